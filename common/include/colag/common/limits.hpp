@@ -1,0 +1,53 @@
+#pragma once
+// Every fixed capacity of ColAG-fw, in one place. Memory for all of them is reserved before a
+// task's first step; nothing grows at run time. Change a number here and everything that
+// depends on it (buffers, message sizes, IDL bounds via static_asserts) follows or fails to
+// compile.
+#include <cstddef>
+#include <cstdint>
+
+namespace colag::limits {
+
+// --- Robots -----------------------------------------------------------------------------------
+inline constexpr std::size_t kMaxUgvs = 16;
+inline constexpr std::size_t kMaxRobots = kMaxUgvs + 1;  // + the UAV
+inline constexpr std::size_t kMaxSupportRequests = 64;   // live CollisionInfo requests at the UAV
+
+// --- World grids (UAV 3-D map, UGV 2-D map) ----------------------------------------------------
+inline constexpr double kGridResolution_m = 0.1;
+inline constexpr double kGridOriginX_m = -20.0;  // grid covers [-20, 20] x [-20, 20] x [0, 3] m
+inline constexpr double kGridOriginY_m = -20.0;
+inline constexpr double kGridOriginZ_m = 0.0;
+inline constexpr int kGridCellsX = 400;
+inline constexpr int kGridCellsY = 400;
+inline constexpr int kGridCellsZ = 30;
+inline constexpr std::size_t kGridCells2d = std::size_t{kGridCellsX} * kGridCellsY;
+inline constexpr std::size_t kGridCells3d = kGridCells2d * kGridCellsZ;
+
+// --- Map sharing -------------------------------------------------------------------------------
+inline constexpr int kMaxPatchSideCells = 64;  // 6.4 m: the 5 m send box plus rounding margin
+inline constexpr std::size_t kMaxPatchCells = std::size_t{kMaxPatchSideCells} * kMaxPatchSideCells;
+inline constexpr std::size_t kMaxPatchBytes = kMaxPatchCells / 4;  // 2 bits per cell, worst case
+
+// --- Planning ----------------------------------------------------------------------------------
+inline constexpr std::size_t kMaxPathPoints = 2048;  // raw grid path
+inline constexpr std::size_t kMaxWaypoints = 256;    // after smoothing
+inline constexpr std::size_t kMaxTrajectorySamples = 1024;
+inline constexpr std::size_t kMaxPredictionSteps = 256;  // collision-prediction ellipses
+
+// --- Sensors -----------------------------------------------------------------------------------
+inline constexpr std::size_t kMaxLidarBeams = 32;
+inline constexpr std::size_t kMaxLidarColumns = 1200;  // 0.3 deg horizontal resolution
+inline constexpr std::size_t kMaxLidarPoints = kMaxLidarBeams * kMaxLidarColumns;
+inline constexpr std::size_t kMaxRpeDetectionsPerFrame = kMaxUgvs;
+inline constexpr std::size_t kUavOdometryHistory = 64;  // UGV side, for RPE time matching
+inline constexpr std::size_t kCanRxQueue = 64;
+
+// --- Runtime -----------------------------------------------------------------------------------
+inline constexpr std::size_t kMaxTasksPerExecutor = 16;
+inline constexpr std::size_t kMaxSubscriptions = 128;        // per transport instance
+inline constexpr std::size_t kLoopbackMaxInFlight = 512;     // samples held by the loopback
+inline constexpr std::size_t kLoopbackMaxDeliveries = 4096;  // (sample, subscriber) pairs pending
+inline constexpr std::size_t kDefaultReaderDepth = 8;
+
+}  // namespace colag::limits

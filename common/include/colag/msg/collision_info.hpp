@@ -1,0 +1,22 @@
+#pragma once
+#include <cstdint>
+
+#include "colag/common/time.hpp"
+#include "colag/msg/robot_id.hpp"
+
+namespace colag::msg {
+
+// A UGV's request for support (UGV -> UAV), or the cancellation of its earlier request.
+// Latest value per UGV wins: the transport keeps it reliably, so a cancel is never lost.
+struct CollisionInfo {
+  TimePoint stamp;
+  RobotId ugv_id = 0;
+  std::uint32_t seq = 0;
+  bool cancel = false;               // true: no support needed any more; fields below unused
+  double collision_point_m[2] = {};  // p_pc: centre of the first 3-sigma ellipse that touches
+  double support_point_m[2] = {};    // p_ps: where the UAV should go
+  double time_to_collision_s = 0.0;  // t_pc, counted from `stamp`
+  friend bool operator==(const CollisionInfo&, const CollisionInfo&) = default;
+};
+
+}  // namespace colag::msg

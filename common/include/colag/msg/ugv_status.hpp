@@ -1,0 +1,34 @@
+#pragma once
+#include <cstdint>
+
+#include "colag/common/time.hpp"
+#include "colag/msg/robot_id.hpp"
+
+namespace colag::msg {
+
+enum class UgvMode : std::uint8_t {
+  kWaitingForInit = 0,  // no relative pose seen yet: the estimator is not initialised
+  kDriving = 1,
+  kWaitingForSupport = 2,  // stopped: predicted collision closer than the stop threshold
+  kArrived = 3,
+  kNoPath = 4,  // the planner finds no route to the goal in the current map
+  kFault = 5,   // sensor or actuator failure: motors commanded to zero
+};
+
+// A UGV's estimated state (UGV -> UAV and the other UGVs, ~10 Hz).
+struct UgvStatus {
+  TimePoint stamp;
+  RobotId ugv_id = 0;
+  UgvMode mode = UgvMode::kWaitingForInit;
+  double position_m[2] = {};  // EKF estimate, world frame
+  double yaw_rad = 0.0;
+  double covariance[9] = {};  // (x, y, yaw), 3x3 row-major: m^2, m*rad, rad^2
+  double velocity_mps = 0.0;  // commanded forward speed
+  double yaw_rate_radps = 0.0;
+  double goal_m[2] = {};
+  double waiting_time_s = 0.0;        // accumulated time stopped for support
+  std::uint32_t rejected_inputs = 0;  // health: malformed or out-of-gate inputs so far
+  friend bool operator==(const UgvStatus&, const UgvStatus&) = default;
+};
+
+}  // namespace colag::msg

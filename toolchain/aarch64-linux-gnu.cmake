@@ -1,0 +1,27 @@
+# Cross-compiling for aarch64 Linux robot boards (Debian's crossbuild-essential-arm64).
+set(CMAKE_SYSTEM_NAME Linux)
+set(CMAKE_SYSTEM_PROCESSOR aarch64)
+set(CMAKE_C_COMPILER aarch64-linux-gnu-gcc)
+set(CMAKE_CXX_COMPILER aarch64-linux-gnu-g++)
+set(CMAKE_LIBRARY_ARCHITECTURE aarch64-linux-gnu)
+
+# Target libraries come from a sysroot folder of unpacked arm64 .debs (never a multiarch install
+# on the host). Default: build/sysroot-arm64 beside the build trees; override with COLAG_SYSROOT.
+if(NOT DEFINED COLAG_SYSROOT)
+  get_filename_component(COLAG_SYSROOT "${CMAKE_CURRENT_LIST_DIR}/../build/sysroot-arm64" ABSOLUTE)
+endif()
+set(CMAKE_FIND_ROOT_PATH "${COLAG_SYSROOT}" /usr/aarch64-linux-gnu)
+set(CMAKE_FIND_ROOT_PATH_MODE_PROGRAM NEVER)
+set(CMAKE_FIND_ROOT_PATH_MODE_LIBRARY ONLY)
+set(CMAKE_FIND_ROOT_PATH_MODE_INCLUDE ONLY)
+# BOTH: header-only packages (Eigen) are architecture-independent and may come from the host.
+set(CMAKE_FIND_ROOT_PATH_MODE_PACKAGE BOTH)
+if(EXISTS "${COLAG_SYSROOT}")
+  foreach(dir lib/aarch64-linux-gnu usr/lib/aarch64-linux-gnu)
+    string(APPEND CMAKE_EXE_LINKER_FLAGS_INIT " -Wl,-rpath-link,${COLAG_SYSROOT}/${dir}")
+  endforeach()
+  include_directories(SYSTEM "${COLAG_SYSROOT}/usr/include/aarch64-linux-gnu")
+endif()
+
+# binfmt_misc is not mounted on the build machines: ctest runs target programs through qemu.
+set(CMAKE_CROSSCOMPILING_EMULATOR qemu-aarch64-static;-L;/usr/aarch64-linux-gnu)
