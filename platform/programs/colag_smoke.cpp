@@ -7,11 +7,32 @@
 #include "colag/platform/lockstep_executor.hpp"
 #include "colag/platform/loopback_transport.hpp"
 #include "colag/platform/monotonic_clock.hpp"
+#include "colag/platform/readers.hpp"
 #include "colag/uav/uav_stub_task.hpp"
-#include "colag/ugv/ugv_stub_task.hpp"
 
 using namespace colag;
 using namespace std::chrono_literals;
+
+namespace {
+// Placeholder UGV: listens to the UAV's odometry and publishes its status.
+class UgvStubTask final : public platform::Task {
+ public:
+  explicit UgvStubTask(platform::Transport& transport) : transport_(transport) {}
+  const char* name() const override { return "ugv_stub"; }
+  Status init(TimePoint) override { return odometry_.attach(transport_); }
+  void step(TimePoint now) override {
+    msg::UgvStatus status;
+    status.stamp = now;
+    status.mode = odometry_.has_value() ? msg::UgvMode::kDriving : msg::UgvMode::kWaitingForInit;
+    (void)transport_.publish(status);
+  }
+  std::uint64_t odometry_received() const { return odometry_.updates(); }
+
+ private:
+  platform::Transport& transport_;
+  platform::LatestReader<msg::UavOdometry> odometry_;
+};
+}  // namespace
 
 int main() {
   static platform::LoopbackTransport bus(/*seed=*/1);  // static: ~2 MB of in-flight slots
@@ -19,7 +40,7 @@ int main() {
   platform::LockstepExecutor executor(TimePoint{}, &wall);
   platform::TransportPump pump(bus);
   uav::UavStubTask uav(bus);
-  ugv::UgvStubTask ugv(bus, /*id=*/0);
+  UgvStubTask ugv(bus);
 
   const platform::TaskEntry table[] = {
       {&pump, 10ms, 1ms},

@@ -1,0 +1,134 @@
+#include "colag/common/map_patch_codec.hpp"
+
+#include <algorithm>
+
+namespace colag {
+
+namespace {
+
+constexpr std::size_t packed_bytes(std::size_t cells) {
+  return (cells + 3) / 4;
+}
+
+bool valid_size(int w, int h) {
+  return w > 0 && h > 0 && w <= limits::kMaxPatchSideCells && h <= limits::kMaxPatchSideCells;
+}
+
+void encode_packed(const PatchCells& in, std::size_t n, std::uint8_t* data) {
+  std::fill(data, data + packed_bytes(n), std::uint8_t{0});
+  for (std::size_t i = 0; i < n; ++i) {
+    data[i / 4] |= static_cast<std::uint8_t>(static_cast<unsigned>(in.cells[i]) << (2 * (i % 4)));
+  }
+}
+
+// Returns the encoded size, or 0 if it would exceed `cap` bytes.
+std::size_t encode_rle(const PatchCells& in, std::size_t n, std::uint8_t* data, std::size_t cap) {
+  std::size_t len = 0;
+  for (std::size_t i = 0; i < n;) {
+    std::size_t j = i + 1;
+    while (j < n && in.cells[j] == in.cells[i])
+      ++j;
+    std::uint32_t v =
+        static_cast<std::uint32_t>(in.cells[i]) | static_cast<std::uint32_t>((j - i - 1) << 2);
+    do {
+      if (len == cap) return 0;
+      const auto byte = static_cast<std::uint8_t>(v & 0x7F);
+      v >>= 7;
+      data[len++] = static_cast<std::uint8_t>(byte | (v != 0 ? 0x80 : 0x00));
+    } while (v != 0);
+    i = j;
+  }
+  return len;
+}
+
+Status decode_packed(const msg::MapPatch& in, std::size_t n, PatchCells& out) {
+  if (in.data_bytes != packed_bytes(n)) return {Errc::kInvalidArgument, "packed patch: wrong size"};
+  for (std::size_t i = 0; i < packed_bytes(n) * 4; ++i) {
+    const unsigned v = (in.data[i / 4] >> (2 * (i % 4))) & 3U;
+    if (i >= n) {
+      if (v != 0) return {Errc::kCorrupt, "packed patch: non-zero padding"};
+      continue;
+    }
+    if (v > 2) return {Errc::kCorrupt, "packed patch: invalid cell value"};
+    out.cells[i] = static_cast<CellState>(v);
+  }
+  return Status::ok();
+}
+
+Status decode_rle(const msg::MapPatch& in, std::size_t n, PatchCells& out) {
+  std::size_t pos = 0, cell = 0;
+  while (pos < in.data_bytes) {
+    std::uint32_t v = 0;
+    int shift = 0;
+    for (;;) {
+      if (pos == in.data_bytes) return {Errc::kCorrupt, "run-length patch: truncated run"};
+      if (shift > 14) return {Errc::kCorrupt, "run-length patch: run too long"};
+      const std::uint8_t b = in.data[pos++];
+      v |= static_cast<std::uint32_t>(b & 0x7F) << shift;
+      shift += 7;
+      if ((b & 0x80) == 0) break;
+    }
+    const unsigned state = v & 3U;
+    const std::size_t run = (v >> 2) + 1;
+    if (state > 2) return {Errc::kCorrupt, "run-length patch: invalid cell value"};
+    if (run > n - cell) return {Errc::kCorrupt, "run-length patch: more cells than the patch"};
+    std::fill_n(out.cells.begin() + static_cast<std::ptrdiff_t>(cell), run,
+                static_cast<CellState>(state));
+    cell += run;
+  }
+  if (cell != n) return {Errc::kCorrupt, "run-length patch: fewer cells than the patch"};
+  return Status::ok();
+}
+
+}  // namespace
+
+Status encode_patch(const PatchCells& in, msg::MapPatch& out) {
+  if (!valid_size(in.width, in.height)) return {Errc::kInvalidArgument, "patch size out of range"};
+  const auto n = static_cast<std::size_t>(in.width * in.height);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (static_cast<unsigned>(in.cells[i]) > 2)
+      return {Errc::kInvalidArgument, "invalid cell state"};
+  }
+  out.width_cells = static_cast<std::uint16_t>(in.width);
+  out.height_cells = static_cast<std::uint16_t>(in.height);
+  const std::size_t packed = packed_bytes(n);
+  const std::size_t rle = encode_rle(in, n, out.data, packed - 1);  // only if strictly smaller
+  if (rle > 0) {
+    out.encoding = msg::MapPatchEncoding::kRunLength;
+    out.data_bytes = static_cast<std::uint16_t>(rle);
+  } else {
+    encode_packed(in, n, out.data);
+    out.encoding = msg::MapPatchEncoding::kPacked2Bit;
+    out.data_bytes = static_cast<std::uint16_t>(packed);
+  }
+  std::fill(out.data + out.data_bytes, out.data + limits::kMaxPatchBytes, std::uint8_t{0});
+  return Status::ok();
+}
+
+Status decode_patch(const msg::MapPatch& in, PatchCells& out) {
+  if (!valid_size(in.width_cells, in.height_cells)) {
+    return {Errc::kInvalidArgument, "patch size out of range"};
+  }
+  if (in.data_bytes > limits::kMaxPatchBytes)
+    return {Errc::kInvalidArgument, "patch payload too long"};
+  const auto n = static_cast<std::size_t>(in.width_cells) * in.height_cells;
+  // Decode into a scratch copy so `out` is never left half-written.
+  static_assert(limits::kMaxPatchCells <= 4096, "scratch lives on the stack");
+  PatchCells scratch;
+  Status s{Errc::kInvalidArgument, "unknown patch encoding"};
+  switch (in.encoding) {
+    case msg::MapPatchEncoding::kPacked2Bit:
+      s = decode_packed(in, n, scratch);
+      break;
+    case msg::MapPatchEncoding::kRunLength:
+      s = decode_rle(in, n, scratch);
+      break;
+  }
+  if (!s) return s;
+  scratch.width = in.width_cells;
+  scratch.height = in.height_cells;
+  out = scratch;
+  return Status::ok();
+}
+
+}  // namespace colag

@@ -1,0 +1,118 @@
+#include <gtest/gtest.h>
+
+#include <memory>
+
+#include "colag/ugv/collision_predictor.hpp"
+#include "map_fixtures.hpp"
+
+using namespace colag;
+using namespace colag::ugv;
+
+namespace {
+
+// Straight line along +x at constant 0.5 m/s from (0, 0) (the speed profile starts at v_max
+// and brakes only at x = 10).
+Trajectory straight_trajectory() {
+  Path path;
+  (void)path.waypoints.push_back(Vec2(0.0, 0.05));
+  (void)path.waypoints.push_back(Vec2(10.0, 0.05));
+  Trajectory t;
+  EXPECT_TRUE(t.build(path, 0.5, {}));
+  return t;
+}
+
+// Free map with an unknown block from x = 3.0 on.
+std::unique_ptr<MapStore> map_with_unknown_ahead() {
+  auto map = std::make_unique<MapStore>();
+  EXPECT_TRUE(test::fill_map(*map, -3, -3, 3.0, 3, [](const Vec2&) { return CellState::kFree; }));
+  return map;
+}
+
+OdometryNoise forward_noise_only() {
+  OdometryNoise n;
+  n.sigma_omega_radps = 0.0;  // no heading noise: the ellipses grow along x only
+  n.sigma_v_fraction = n.sigma_omega_fraction = 0.0;
+  return n;
+}
+
+}  // namespace
+
+TEST(CollisionPredictor, NothingOnAFreeMapWithZeroCovariance) {
+  auto map = std::make_unique<MapStore>();
+  ASSERT_TRUE(test::fill_map(*map, -3, -3, 13, 3, [](const Vec2&) { return CellState::kFree; }));
+  PredictorConfig cfg;
+  cfg.horizon_m = 20.0;
+  const CollisionPredictor predictor(cfg, forward_noise_only());
+  Prediction p;
+  const Trajectory traj = straight_trajectory();
+  predictor.predict({Vec2(0, 0.05), 0.0}, Mat3::Zero(), traj, 0, *map, {}, p);
+  EXPECT_EQ(p.kind, CollisionKind::kNone);
+  EXPECT_GT(p.ellipses.size(), 40u);  // it did look all the way to the end
+}
+
+TEST(CollisionPredictor, MeanOnlyHitsWhereTheInflatedUnknownBegins) {
+  auto map = map_with_unknown_ahead();
+  // Unknown from x = 3.0, inflated by 0.25 m (square to square): cells from [2.7, 2.8) on.
+  ASSERT_FALSE(map->predict_blocked(Vec2(2.65, 0.05)));
+  ASSERT_TRUE(map->predict_blocked(Vec2(2.75, 0.05)));
+  PredictorConfig cfg;
+  cfg.horizon_m = 10.0;
+  cfg.use_uncertainty = false;
+  const CollisionPredictor predictor(cfg, forward_noise_only());
+  Prediction p;
+  predictor.predict({Vec2(0, 0.05), 0.0}, Mat3::Identity(), straight_trajectory(), 0, *map, {}, p);
+  ASSERT_EQ(p.kind, CollisionKind::kMap);
+  // At 0.5 m/s the centre reaches x = 2.7 at t = 5.4 s (a multiple of the 0.2 s step).
+  EXPECT_NEAR(p.time_s, 5.4, 1e-9);
+  EXPECT_NEAR(p.point.x(), 2.7, 1e-6);
+  EXPECT_NEAR(p.support_point.x(), 0.7, 1e-6);  // 2 m back along the planned velocity
+  EXPECT_NEAR(p.support_point.y(), 0.05, 1e-6);
+}
+
+TEST(CollisionPredictor, ThreeSigmaEllipseHitsEarlierAsHandCalculated) {
+  auto map = map_with_unknown_ahead();
+  PredictorConfig cfg;
+  cfg.horizon_m = 10.0;
+  const OdometryNoise noise = forward_noise_only();
+  const CollisionPredictor predictor(cfg, noise);
+  Prediction p;
+  Mat3 P = Mat3::Zero();
+  P(0, 0) = P(1, 1) = 0.01;  // sigma 0.1 m
+  predictor.predict({Vec2(0, 0.05), 0.0}, P, straight_trajectory(), 0, *map, {}, p);
+  ASSERT_EQ(p.kind, CollisionKind::kMap);
+  // After k steps of 0.2 s, var_x = 0.01 + k * sigma_v^2 * 0.2^2. The ellipse's right end
+  // x + 3 sigma_x reaches the blocked cells at 2.7 for the first k with 0.1 k + 3 sigma >= 2.7.
+  int k = 0;
+  for (;; ++k) {
+    const double sx = std::sqrt(0.01 + k * noise.sigma_v_mps * noise.sigma_v_mps * 0.04);
+    if (0.1 * k + 3 * sx >= 2.7) break;
+  }
+  EXPECT_EQ(k, 24);
+  EXPECT_NEAR(p.time_s, 0.2 * k, 1e-9);
+  EXPECT_NEAR(p.point.x(), 0.1 * k, 1e-6);
+  // The covariance grew along the way, as in the EKF.
+  EXPECT_GT(p.ellipses.back().M(0, 0), p.ellipses.front().M(0, 0));
+}
+
+TEST(CollisionPredictor, AnotherRobotAheadIsARobotConflictNotAMapOne) {
+  auto map = std::make_unique<MapStore>();
+  ASSERT_TRUE(test::fill_map(*map, -3, -3, 13, 3, [](const Vec2&) { return CellState::kFree; }));
+  PredictorConfig cfg;
+  cfg.horizon_m = 10.0;
+  const CollisionPredictor predictor(cfg, forward_noise_only());
+  const OtherRobot other{Vec2(4.0, 0.0), 0.75};
+  Prediction p;
+  predictor.predict({Vec2(0, 0.05), 0.0}, Mat3::Zero(), straight_trajectory(), 0, *map, {&other, 1},
+                    p);
+  ASSERT_EQ(p.kind, CollisionKind::kRobot);
+  EXPECT_NEAR(p.point.x(), 3.3, 0.11);  // where the discs first overlap
+}
+
+TEST(CollisionPredictor, AnEllipseAlreadyTouchingMeansNow) {
+  auto map = map_with_unknown_ahead();
+  const CollisionPredictor predictor(PredictorConfig{}, forward_noise_only());
+  Prediction p;
+  predictor.predict({Vec2(2.9, 0.05), 0.0}, Mat3::Zero(), straight_trajectory(), 29, *map, {}, p);
+  ASSERT_EQ(p.kind, CollisionKind::kMap);
+  EXPECT_EQ(p.time_s, 0.0);
+}

@@ -1,0 +1,135 @@
+#include <gtest/gtest.h>
+
+#include <memory>
+
+#include "colag/common/random.hpp"
+#include "colag/ugv/map_store.hpp"
+#include "map_fixtures.hpp"
+
+using namespace colag;
+using namespace colag::ugv;
+
+namespace {
+
+// Square-to-square distance between two cells, in metres.
+double gap_m(CellIndex a, CellIndex b) {
+  const double gx = std::max(0, std::abs(a.x - b.x) - 1), gy = std::max(0, std::abs(a.y - b.y) - 1);
+  return 0.1 * std::sqrt(gx * gx + gy * gy);
+}
+
+class MapStoreTest : public ::testing::Test {
+ protected:
+  std::unique_ptr<MapStore> map = std::make_unique<MapStore>();  // ~1.5 MB: not on the stack
+  const GridGeometry2d& g = map->geometry();
+};
+
+}  // namespace
+
+TEST_F(MapStoreTest, BeforeAnyDataEverythingIsUnknownBlockedForPredictionFreeForPlanning) {
+  for (const Vec2& p : {Vec2(0, 0), Vec2(10.3, -7.9), Vec2(-19.95, 19.95)}) {
+    EXPECT_EQ(map->state(g.cell_of(p)), CellState::kUnknown);
+    EXPECT_TRUE(map->predict_blocked(p));
+    EXPECT_FALSE(map->plan_blocked(p));
+  }
+  EXPECT_TRUE(map->plan_blocked(Vec2(25, 0)));  // outside the grid
+  EXPECT_TRUE(map->predict_blocked(Vec2(0, -21)));
+}
+
+TEST_F(MapStoreTest, MergesAPatchAndInflatesBothViews) {
+  const Vec2 obstacle(0.05, 0.05);  // the centre of cell (200, 200)
+  ASSERT_TRUE(test::fill_map(*map, -3, -3, 3, 3, [&](const Vec2& p) {
+    return (p - obstacle).norm() < 0.01 ? CellState::kOccupied : CellState::kFree;
+  }));
+  const CellIndex o = g.cell_of(obstacle);
+  EXPECT_EQ(map->state(o), CellState::kOccupied);
+  EXPECT_EQ(map->state(g.cell_of(Vec2(1, 1))), CellState::kFree);
+  // Every cell around: blocked exactly when its square is within the radius of the obstacle's.
+  for (int dy = -8; dy <= 8; ++dy) {
+    for (int dx = -8; dx <= 8; ++dx) {
+      const CellIndex c{o.x + dx, o.y + dy};
+      EXPECT_EQ(map->plan_blocked(c), gap_m(c, o) <= 0.4 + 1e-9) << dx << "," << dy;
+      EXPECT_EQ(map->predict_blocked(c), gap_m(c, o) <= 0.25 + 1e-9) << dx << "," << dy;
+    }
+  }
+  // Unknown beyond the patch still blocks prediction near the patch border, not planning.
+  EXPECT_TRUE(map->predict_blocked(Vec2(2.95, 0)));
+  EXPECT_FALSE(map->predict_blocked(Vec2(2.5, 0)));
+  EXPECT_FALSE(map->plan_blocked(Vec2(2.95, 0)));
+}
+
+TEST_F(MapStoreTest, IncrementalViewsEqualARecomputationAfterRandomPatches) {
+  Rng rng(3);
+  const double x0 = -2.0, y0 = -2.0;
+  for (int round = 0; round < 30; ++round) {
+    const double px = x0 + 0.1 * static_cast<double>(rng.below(20)),
+                 py = y0 + 0.1 * static_cast<double>(rng.below(20));
+    const double size = 0.1 * static_cast<double>(5 + rng.below(20));
+    ASSERT_TRUE(test::fill_map(*map, px, py, px + size, py + size, [&](const Vec2&) {
+      const double u = rng.uniform();
+      return u < 0.6 ? CellState::kFree : (u < 0.85 ? CellState::kOccupied : CellState::kUnknown);
+    }));
+  }
+  const CellIndex c0 = g.cell_of(Vec2(x0 - 1, y0 - 1)), c1 = g.cell_of(Vec2(x0 + 5, y0 + 5));
+  for (int y = c0.y; y <= c1.y; ++y) {
+    for (int x = c0.x; x <= c1.x; ++x) {
+      bool plan = false, predict = false;
+      for (int yy = y - 6; yy <= y + 6; ++yy) {
+        for (int xx = x - 6; xx <= x + 6; ++xx) {
+          const CellState s = map->state({xx, yy});
+          const double d = gap_m({x, y}, {xx, yy});
+          plan |= s == CellState::kOccupied && d <= 0.4 + 1e-9;
+          predict |= s != CellState::kFree && d <= 0.25 + 1e-9;
+        }
+      }
+      ASSERT_EQ(map->plan_blocked(CellIndex{x, y}), plan) << x << "," << y;
+      ASSERT_EQ(map->predict_blocked(CellIndex{x, y}), predict) << x << "," << y;
+    }
+  }
+}
+
+TEST_F(MapStoreTest, RejectsEveryMalformedPatchWithoutTouchingTheMap) {
+  PatchCells cells;
+  cells.width = cells.height = 10;  // all free
+  msg::MapPatch good;
+  ASSERT_TRUE(encode_patch(cells, good));
+  good.resolution_m = 0.1;
+  good.origin_x_m = 1.0;
+  good.origin_y_m = 1.0;
+
+  const auto rejected = [&](msg::MapPatch p, const char* why) {
+    const auto before = map->counters().patches_rejected;
+    EXPECT_FALSE(map->apply(p)) << why;
+    EXPECT_EQ(map->counters().patches_rejected, before + 1) << why;
+    EXPECT_EQ(map->state(g.cell_of(Vec2(1.05, 1.05))), CellState::kUnknown) << why;
+  };
+  msg::MapPatch p = good;
+  p.resolution_m = 0.2;
+  rejected(p, "resolution");
+  p = good;
+  p.resolution_m = std::numeric_limits<double>::quiet_NaN();
+  rejected(p, "NaN resolution");
+  p = good;
+  p.origin_x_m = std::numeric_limits<double>::infinity();
+  rejected(p, "infinite origin");
+  p = good;
+  p.origin_y_m = 1.03;
+  rejected(p, "origin off the grid");
+  p = good;
+  p.origin_x_m = 19.5;  // 10 cells from 19.5 run past the edge at 20
+  rejected(p, "partly outside");
+  p = good;
+  p.origin_x_m = -1e300;
+  rejected(p, "far outside");
+  p = good;
+  p.width_cells = 11;  // payload no longer matches the size
+  rejected(p, "size/payload mismatch");
+  p = good;
+  p.width_cells = 0;
+  rejected(p, "zero width");
+  p = good;
+  p.data_bytes = 0;
+  rejected(p, "empty payload");
+  EXPECT_EQ(map->counters().patches_applied, 0u);
+  EXPECT_TRUE(map->apply(good));
+  EXPECT_EQ(map->state(g.cell_of(Vec2(1.05, 1.05))), CellState::kFree);
+}

@@ -1,0 +1,216 @@
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "colag/common/random.hpp"
+#include "colag/common/ugv_ekf.hpp"
+
+using namespace colag;
+using namespace std::chrono_literals;
+
+namespace {
+
+constexpr Duration kOdomPeriod = 20ms;  // 50 Hz
+
+Mat3 rpe_covariance() {
+  return Vec3(0.2 * 0.2, 0.2 * 0.2, 0.05 * 0.05).asDiagonal();
+}
+
+// Exactly the filter's noise model, without the slip terms, so the simulation matches it.
+UgvEkfConfig white_noise_config() {
+  UgvEkfConfig c;
+  c.noise.sigma_v_fraction = 0.0;
+  c.noise.sigma_omega_fraction = 0.0;
+  return c;
+}
+
+struct Truth {
+  Vec3 x = Vec3(1.0, 2.0, 0.3);
+  void step(double v, double w, double dt) {
+    x.x() += std::cos(x.z()) * v * dt;
+    x.y() += std::sin(x.z()) * v * dt;
+    x.z() = wrap_angle(x.z() + w * dt);
+  }
+};
+
+PoseMeasurement measure(const Truth& truth, TimePoint t, Rng& rng) {
+  return {t,
+          {Vec2(truth.x.x() + rng.gaussian(0, 0.2), truth.x.y() + rng.gaussian(0, 0.2)),
+           wrap_angle(truth.x.z() + rng.gaussian(0, 0.05))},
+          rpe_covariance()};
+}
+
+double nees(const Truth& truth, const UgvEkf& ekf) {
+  Vec3 e = truth.x - ekf.mean();
+  e.z() = wrap_angle(e.z());
+  return e.dot(ekf.covariance().ldlt().solve(e));
+}
+
+// Average NEES at each whole second over `runs` Monte-Carlo runs of 30 s; RPE once a second.
+std::vector<double> monte_carlo_nees(double v, double w, int runs) {
+  const int seconds = 30;
+  std::vector<double> sum(seconds, 0.0);
+  const OdometryNoise noise = white_noise_config().noise;
+  for (int r = 0; r < runs; ++r) {
+    Rng rng(1000 + r);
+    UgvEkf ekf(white_noise_config());
+    Truth truth;
+    TimePoint t{};
+    EXPECT_EQ(ekf.update(measure(truth, t, rng)), UgvEkf::Update::kInitialized);
+    for (int s = 0; s < seconds; ++s) {
+      for (int k = 0; k < 50; ++k) {
+        t += kOdomPeriod;
+        truth.step(v, w, to_seconds(kOdomPeriod));
+        EXPECT_TRUE(ekf.predict(t, v + rng.gaussian(0, noise.sigma_v_mps),
+                                w + rng.gaussian(0, noise.sigma_omega_radps)));
+      }
+      sum[s] += nees(truth, ekf);  // before this second's measurement: covariance at its widest
+      ekf.update(measure(truth, t, rng));
+    }
+  }
+  for (double& x : sum)
+    x /= runs;
+  return sum;
+}
+
+void expect_consistent(const std::vector<double>& mean_nees) {
+  // chi2(300) 2.5 % and 97.5 % quantiles / 100 runs: the 95 % band of the average NEES, 3 dof.
+  const double lo = 2.54, hi = 3.50;
+  int inside = 0;
+  double total = 0;
+  for (double m : mean_nees) {
+    inside += m >= lo && m <= hi;
+    total += m;
+  }
+  EXPECT_GE(inside, static_cast<int>(0.9 * static_cast<double>(mean_nees.size())))
+      << "average NEES outside the 95 % band too often";
+  EXPECT_NEAR(total / static_cast<double>(mean_nees.size()), 3.0, 0.3);
+}
+
+}  // namespace
+
+TEST(UgvEkf, ConsistentOnAStraightLine) {
+  expect_consistent(monte_carlo_nees(0.5, 0.0, 100));
+}
+
+TEST(UgvEkf, ConsistentOnACircle) {
+  expect_consistent(monte_carlo_nees(0.5, 0.2, 100));
+}
+
+TEST(UgvEkf, CovarianceGrowthMatchesTheClosedFormOnAStraightLine) {
+  UgvEkf ekf(white_noise_config());
+  ASSERT_EQ(ekf.update({TimePoint{}, {Vec2(0, 0), 0.0}, Mat3::Identity() * 1e-14}),
+            UgvEkf::Update::kInitialized);
+  const double v = 0.5, dt = 0.02;
+  const double sv = 0.0336, sw = 0.0292;
+  const int n = 500;
+  for (int k = 1; k <= n; ++k)
+    ASSERT_TRUE(ekf.predict(TimePoint{k * kOdomPeriod}, v, 0.0));
+  // With yaw = 0: P_xx = n sv^2 dt^2, P_tt = n q, P_yt = v dt q n(n-1)/2,
+  // P_yy = v^2 dt^2 q (n-1) n (2n-1) / 6, with q = sw^2 dt^2.
+  const double q = sw * sw * dt * dt;
+  const Mat3& P = ekf.covariance();
+  EXPECT_NEAR(P(0, 0), n * sv * sv * dt * dt, 1e-12);
+  EXPECT_NEAR(P(2, 2), n * q, 1e-12);
+  EXPECT_NEAR(P(1, 2), v * dt * q * n * (n - 1) / 2.0, 1e-10);
+  EXPECT_NEAR(P(1, 1), v * v * dt * dt * q * (n - 1.0) * n * (2.0 * n - 1) / 6.0, 1e-9);
+  EXPECT_NEAR(P(0, 1), 0.0, 1e-12);
+  EXPECT_NEAR(ekf.mean().x(), v * n * dt, 1e-9);
+}
+
+TEST(UgvEkf, RejectsAMeasurementFarOutsideTheGateThenResetsIfItPersists) {
+  UgvEkfConfig cfg;
+  cfg.reset_after_rejections = 5;
+  UgvEkf ekf(cfg);
+  ASSERT_EQ(ekf.update({TimePoint{}, {Vec2(0, 0), 0.0}, rpe_covariance()}),
+            UgvEkf::Update::kInitialized);
+  const PoseMeasurement far{TimePoint{}, {Vec2(5.0, 0.0), 0.0}, rpe_covariance()};
+  for (int i = 0; i < 4; ++i)
+    EXPECT_EQ(ekf.update(far), UgvEkf::Update::kRejectedGate);
+  EXPECT_NEAR(ekf.mean().x(), 0.0, 1e-12);  // untouched
+  EXPECT_EQ(ekf.counters().rejected_gate, 4u);
+  // The fifth in a row: the filter must have diverged; it restarts from the measurement.
+  EXPECT_EQ(ekf.update(far), UgvEkf::Update::kReset);
+  EXPECT_NEAR(ekf.mean().x(), 5.0, 1e-12);
+  EXPECT_EQ(ekf.counters().resets, 1u);
+  // A good measurement between outliers restarts the count.
+  EXPECT_EQ(ekf.update({TimePoint{}, {Vec2(5.1, 0.0), 0.0}, rpe_covariance()}),
+            UgvEkf::Update::kApplied);
+}
+
+TEST(UgvEkf, AngleWrapAcrossPlusMinusPi) {
+  UgvEkf ekf;
+  ASSERT_EQ(ekf.update({TimePoint{}, {Vec2(0, 0), 3.10}, rpe_covariance()}),
+            UgvEkf::Update::kInitialized);
+  // -3.10 is 0.083 rad away across the wrap, not 6.2 rad.
+  ASSERT_EQ(ekf.update({TimePoint{}, {Vec2(0, 0), -3.10}, rpe_covariance()}),
+            UgvEkf::Update::kApplied);
+  const double yaw = ekf.mean().z();
+  EXPECT_GE(yaw, -M_PI);
+  EXPECT_LT(yaw, M_PI);
+  EXPECT_NEAR(std::abs(yaw), M_PI, 0.05);  // half way, across the wrap
+  EXPECT_NEAR(std::cos(yaw), -1.0, 1e-3);
+  // Predicting through the wrap keeps the angle in range.
+  for (int k = 1; k <= 50; ++k)
+    ASSERT_TRUE(ekf.predict(TimePoint{k * kOdomPeriod}, 0.0, 0.5));
+  EXPECT_GE(ekf.mean().z(), -M_PI);
+  EXPECT_LT(ekf.mean().z(), M_PI);
+}
+
+TEST(UgvEkf, ALateMeasurementGivesTheSameStateAsOneInTime) {
+  Rng rng(4);
+  std::vector<std::pair<double, double>> odo;
+  for (int k = 0; k < 60; ++k)
+    odo.emplace_back(0.5 + rng.gaussian(0, 0.03), 0.1 + rng.gaussian(0, 0.03));
+  const PoseMeasurement init{TimePoint{}, {Vec2(0, 0), 0.0}, rpe_covariance()};
+  const PoseMeasurement z{TimePoint{20 * kOdomPeriod}, {Vec2(0.3, 0.1), 0.08}, rpe_covariance()};
+
+  UgvEkf in_time, late;
+  in_time.update(init);
+  late.update(init);
+  for (int k = 1; k <= 60; ++k) {
+    const TimePoint t{k * kOdomPeriod};
+    ASSERT_TRUE(in_time.predict(t, odo[k - 1].first, odo[k - 1].second));
+    ASSERT_TRUE(late.predict(t, odo[k - 1].first, odo[k - 1].second));
+    if (k == 20) {
+      ASSERT_EQ(in_time.update(z), UgvEkf::Update::kApplied);
+    }
+  }
+  ASSERT_EQ(late.update(z), UgvEkf::Update::kApplied);  // 0.8 s late
+  EXPECT_LT((late.mean() - in_time.mean()).norm(), 1e-9);
+  EXPECT_LT((late.covariance() - in_time.covariance()).norm(), 1e-12);
+}
+
+TEST(UgvEkf, RejectsInvalidStaleAndOutOfOrderInput) {
+  UgvEkf ekf;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(ekf.update({TimePoint{}, {Vec2(nan, 0), 0.0}, rpe_covariance()}),
+            UgvEkf::Update::kRejectedInvalid);
+  EXPECT_EQ(ekf.update({TimePoint{}, {Vec2(0, 0), 0.0}, Mat3::Zero()}),
+            UgvEkf::Update::kRejectedInvalid);
+  EXPECT_FALSE(ekf.initialized());
+  ASSERT_EQ(ekf.update({TimePoint{}, {Vec2(0, 0), 0.0}, rpe_covariance()}),
+            UgvEkf::Update::kInitialized);
+  for (int k = 1; k <= 200; ++k)
+    ASSERT_TRUE(ekf.predict(TimePoint{k * kOdomPeriod}, 0.1, 0.0));
+  // Older than the odometry history (1.28 s): cannot be placed.
+  EXPECT_EQ(ekf.update({TimePoint{1s}, {Vec2(0.1, 0), 0.0}, rpe_covariance()}),
+            UgvEkf::Update::kRejectedStale);
+  EXPECT_EQ(ekf.predict(TimePoint{100 * kOdomPeriod}, 0.1, 0.0).code(), Errc::kOutOfRange);
+  EXPECT_EQ(ekf.predict(TimePoint{300 * kOdomPeriod}, nan, 0.0).code(), Errc::kInvalidArgument);
+  EXPECT_EQ(ekf.counters().rejected_stale, 1u);
+  EXPECT_EQ(ekf.counters().rejected_invalid, 2u);
+  EXPECT_EQ(ekf.counters().rejected_odometry, 2u);
+}
+
+TEST(UgvEkf, InitialisesAtTheMeasurementTimeAndCatchesUpWithOdometry) {
+  UgvEkf ekf;
+  for (int k = 1; k <= 50; ++k)
+    ASSERT_TRUE(ekf.predict(TimePoint{k * kOdomPeriod}, 0.5, 0.0));
+  EXPECT_FALSE(ekf.initialized());
+  // An RPE of the pose at 0.6 s arrives at 1.0 s: the 0.4 s of driving since then count.
+  ASSERT_EQ(ekf.update({TimePoint{30 * kOdomPeriod}, {Vec2(3.0, 1.0), 0.0}, rpe_covariance()}),
+            UgvEkf::Update::kInitialized);
+  EXPECT_NEAR(ekf.mean().x(), 3.0 + 0.5 * 0.4, 1e-9);
+  EXPECT_EQ(ekf.stamp(), TimePoint{50 * kOdomPeriod});
+}

@@ -1,0 +1,254 @@
+// The UGV navigation task in closed loop with a small simulated world written here: true
+// differential-drive motion from the Drive commands, noisy wheel odometry, a UAV hovering
+// overhead that publishes its odometry and relative poses, and map patches.
+#include <gtest/gtest.h>
+
+#include <memory>
+
+#include "allocation_counter.hpp"
+#include "colag/common/random.hpp"
+#include "colag/hal/scripted/scripted_devices.hpp"
+#include "colag/platform/lockstep_executor.hpp"
+#include "colag/platform/loopback_transport.hpp"
+#include "colag/ugv/ugv_nav_task.hpp"
+#include "map_fixtures.hpp"
+
+using namespace colag;
+using namespace colag::ugv;
+using namespace std::chrono_literals;
+
+namespace {
+
+class MiniWorld final : public platform::Task {
+ public:
+  MiniWorld(platform::Transport& bus, hal::scripted::ScriptedWheelOdometry& odo,
+            hal::scripted::RecordingDrive& drive, Pose2 start, Vec3 uav)
+      : truth(start), bus_(bus), odo_(odo), drive_(drive), uav_(uav) {}
+  const char* name() const override { return "world"; }
+  void step(TimePoint now) override {
+    const double dt = 0.02;
+    if (odometry_on) {
+      const auto& cmd = drive_.last();
+      truth.p += cmd.v_mps * dt * Vec2(std::cos(truth.yaw_rad), std::sin(truth.yaw_rad));
+      truth.yaw_rad = wrap_angle(truth.yaw_rad + cmd.omega_radps * dt);
+      travelled += std::abs(cmd.v_mps) * dt;
+      (void)odo_.push(
+          {now, cmd.v_mps + rng_.gaussian(0, 0.0336), cmd.omega_radps + rng_.gaussian(0, 0.0292)});
+    }
+    if (++ticks_ % 2 == 0) publish_uav(now);  // 25 Hz
+  }
+  void publish_uav(TimePoint now) {
+    msg::UavOdometry od;
+    od.stamp = now;
+    od.position_m[0] = uav_.x();
+    od.position_m[1] = uav_.y();
+    od.position_m[2] = uav_.z();
+    (void)bus_.publish(od);
+    if (!rpe_on || (truth.p - uav_.head<2>()).norm() > 5.0) return;
+    msg::RelativePose rpe;
+    rpe.stamp = now;
+    rpe.ugv_id = 0;
+    rpe.position_m[0] = truth.p.x() - uav_.x() + rng_.gaussian(0, 0.2);
+    rpe.position_m[1] = truth.p.y() - uav_.y() + rng_.gaussian(0, 0.2);
+    rpe.position_m[2] = -uav_.z();
+    const Quat q = quat_from_yaw(truth.yaw_rad + rng_.gaussian(0, 0.05));
+    rpe.orientation_wxyz[0] = q.w();
+    rpe.orientation_wxyz[3] = q.z();
+    rpe.covariance[0] = rpe.covariance[5] = rpe.covariance[10] = 0.04;
+    rpe.covariance[15] = 0.0025;
+    (void)bus_.publish(rpe);
+  }
+
+  bool odometry_on = true;
+  bool rpe_on = true;
+  double travelled = 0.0;
+  Pose2 truth;
+
+ private:
+  platform::Transport& bus_;
+  hal::scripted::ScriptedWheelOdometry& odo_;
+  hal::scripted::RecordingDrive& drive_;
+  Vec3 uav_;
+  Rng rng_{17};
+  int ticks_ = 0;
+};
+
+// Records the support messages the UGV sends.
+class SupportLog final : public platform::SampleSink {
+ public:
+  void on_sample(msg::Topic, const void* s, TimePoint) override {
+    const auto& ci = *static_cast<const msg::CollisionInfo*>(s);
+    (ci.cancel ? cancels : requests)++;
+    last = ci;
+  }
+  int requests = 0, cancels = 0;
+  msg::CollisionInfo last;
+};
+
+struct Rig {
+  explicit Rig(Vec2 goal, Vec3 uav = Vec3(2, 0, 2)) {
+    config.id = 0;
+    config.goal = goal;
+    bus = std::make_unique<platform::LoopbackTransport>(1);
+    world = std::make_unique<MiniWorld>(*bus, odo, drive, Pose2{Vec2(0, 0), 0.0}, uav);
+    ugv = std::make_unique<UgvNavTask>(config, *bus, odo, drive);
+    EXPECT_TRUE(bus->subscribe(msg::Topic::kCollisionInfo, kAnyRobot, support));
+    pump = std::make_unique<platform::TransportPump>(*bus);
+    EXPECT_TRUE(ex.add({pump.get(), 10ms, 1ms}));
+    EXPECT_TRUE(ex.add({world.get(), 20ms, 1ms}));
+    EXPECT_TRUE(ex.add({&ugv->control_loop(), 20ms, 1ms}));
+    EXPECT_TRUE(ex.add({&ugv->planning_loop(), 100ms, 10ms}));
+    EXPECT_TRUE(ex.init());
+  }
+  void publish_map(double x0, double y0, double x1, double y1) {
+    // The UAV's patches, built by filling a scratch store and re-encoding through the codec.
+    PatchCells cells;
+    const auto& g = kWorldGrid2d;
+    for (double by = y0; by < y1 - 1e-9; by += 6.4) {
+      for (double bx = x0; bx < x1 - 1e-9; bx += 6.4) {
+        const CellIndex c0 = g.cell_of(Vec2(bx + 1e-6, by + 1e-6));
+        cells.width = static_cast<int>(std::lround(std::min(6.4, x1 - bx) / 0.1));
+        cells.height = static_cast<int>(std::lround(std::min(6.4, y1 - by) / 0.1));
+        cells.cells.fill(CellState::kFree);
+        msg::MapPatch patch;
+        ASSERT_TRUE(encode_patch(cells, patch));
+        patch.stamp = ex.now();
+        patch.ugv_id = 0;
+        patch.resolution_m = 0.1;
+        const Vec2 corner = g.center_of(c0) - Vec2(0.05, 0.05);
+        patch.origin_x_m = corner.x();
+        patch.origin_y_m = corner.y();
+        ASSERT_TRUE(bus->publish(patch));
+      }
+    }
+  }
+  bool run_until(const std::function<bool()>& done, Duration limit) {
+    const TimePoint end = ex.now() + limit;
+    while (ex.now() < end) {
+      ex.run_until(ex.now() + 100ms);
+      if (done()) return true;
+    }
+    return false;
+  }
+
+  UgvNavConfig config;
+  hal::scripted::ScriptedWheelOdometry odo;
+  hal::scripted::RecordingDrive drive;
+  SupportLog support;
+  std::unique_ptr<platform::LoopbackTransport> bus;
+  std::unique_ptr<MiniWorld> world;
+  std::unique_ptr<UgvNavTask> ugv;
+  std::unique_ptr<platform::TransportPump> pump;
+  platform::LockstepExecutor ex;
+};
+
+}  // namespace
+
+TEST(UgvNavTask, DrivesToTheGoalThroughAKnownFreeMap) {
+  Rig rig(Vec2(4.0, 2.0));
+  rig.publish_map(-3.2, -3.2, 9.6, 6.4);
+  rig.ex.run_until(TimePoint{200ms});
+  EXPECT_EQ(rig.ugv->mode(), msg::UgvMode::kDriving);  // initialised by the first RPE
+  ASSERT_TRUE(rig.run_until([&] { return rig.ugv->mode() == msg::UgvMode::kArrived; }, 40s))
+      << "mode " << static_cast<int>(rig.ugv->mode());
+  EXPECT_LT((rig.world->truth.p - Vec2(4.0, 2.0)).norm(), 0.35);
+  EXPECT_LT(rig.world->travelled, 4.47 * 1.2);
+  EXPECT_EQ(rig.drive.last().v_mps, 0.0);
+  EXPECT_EQ(rig.support.requests, 0);
+  EXPECT_EQ(rig.ugv->waiting_time_s(), 0.0);
+  // Gaussian tails beyond the 99.9 % gate are dropped as outliers (a few in ~250 updates);
+  // nothing else may be rejected.
+  const UgvHealth& h = rig.ugv->health();
+  EXPECT_LE(h.rpe_outliers, 3u);
+  EXPECT_EQ(h.rejected_inputs() - h.rpe_outliers, 0u);
+  EXPECT_GT(rig.ugv->estimator().counters().updates, 150u);
+}
+
+TEST(UgvNavTask, StopsBeforeTheUnknownAsksForSupportAndGoesOnOnceItIsMapped) {
+  Rig rig(Vec2(6.0, 0.0));
+  rig.publish_map(-3.2, -3.2, 2.5, 3.2);  // known free up to x = 2.5, unknown beyond
+  const bool stopped =
+      rig.run_until([&] { return rig.ugv->mode() == msg::UgvMode::kWaitingForSupport; }, 20s);
+  ASSERT_TRUE(stopped) << "mode " << static_cast<int>(rig.ugv->mode()) << " at x "
+                       << rig.world->truth.p.x() << " predicted "
+                       << static_cast<int>(rig.ugv->prediction().kind) << " t "
+                       << rig.ugv->prediction().time_s << " health rpe "
+                       << rig.ugv->health().rpe_rejected << "/" << rig.ugv->health().rpe_unmatched
+                       << "/" << rig.ugv->health().rpe_outliers;
+  rig.ex.run_until(rig.ex.now() + 2s);  // it stays stopped
+  EXPECT_EQ(rig.ugv->mode(), msg::UgvMode::kWaitingForSupport);
+  EXPECT_LT(rig.world->truth.p.x() + 0.25, 2.5);  // the body never entered the unknown
+  EXPECT_GE(rig.support.requests, 1);
+  EXPECT_FALSE(rig.support.last.cancel);
+  const Vec2 pc(rig.support.last.collision_point_m[0], rig.support.last.collision_point_m[1]);
+  const Vec2 ps(rig.support.last.support_point_m[0], rig.support.last.support_point_m[1]);
+  EXPECT_NEAR((pc - ps).norm(), 2.0, 1e-9);  // 2 m back along the planned velocity
+  EXPECT_LT(ps.x(), pc.x() - 1.9);
+  EXPECT_GT(rig.ugv->waiting_time_s(), 1.5);
+
+  rig.publish_map(2.2, -3.2, 9.6, 3.2);  // the UAV has come and mapped the rest
+  ASSERT_TRUE(rig.run_until([&] { return rig.ugv->mode() == msg::UgvMode::kArrived; }, 40s));
+  EXPECT_GE(rig.support.cancels, 1);
+  EXPECT_TRUE(rig.support.last.cancel);
+  EXPECT_LT((rig.world->truth.p - Vec2(6.0, 0.0)).norm(), 0.35);
+}
+
+TEST(UgvNavTask, WheelOdometryLossStopsTheRobotAndReportsAFault) {
+  Rig rig(Vec2(6.0, 0.0));
+  rig.publish_map(-3.2, -3.2, 9.6, 3.2);
+  rig.ex.run_until(TimePoint{3s});
+  ASSERT_GT(rig.drive.last().v_mps, 0.1);
+  rig.world->odometry_on = false;
+  rig.ex.run_until(rig.ex.now() + 140ms);  // 100 ms timeout + one control period + slack
+  EXPECT_EQ(rig.ugv->mode(), msg::UgvMode::kFault);
+  EXPECT_EQ(rig.drive.last().v_mps, 0.0);
+  EXPECT_EQ(rig.ugv->health().watchdog_trips, 1u);
+  rig.world->odometry_on = true;
+  rig.ex.run_until(rig.ex.now() + 200ms);
+  EXPECT_EQ(rig.ugv->mode(), msg::UgvMode::kDriving);
+}
+
+TEST(UgvNavTask, RejectsAndCountsBadMessagesWithoutHarm) {
+  Rig rig(Vec2(4.0, 0.0));
+  rig.publish_map(-3.2, -3.2, 9.6, 3.2);
+  rig.ex.run_until(TimePoint{1s});
+  msg::RelativePose nan_rpe;
+  nan_rpe.stamp = rig.ex.now();
+  nan_rpe.position_m[0] = std::numeric_limits<double>::quiet_NaN();
+  nan_rpe.covariance[0] = nan_rpe.covariance[5] = nan_rpe.covariance[10] = nan_rpe.covariance[15] =
+      0.01;
+  ASSERT_TRUE(rig.bus->publish(nan_rpe));
+  msg::RelativePose future = nan_rpe;
+  future.position_m[0] = 0.0;
+  future.stamp = rig.ex.now() + 10s;
+  ASSERT_TRUE(rig.bus->publish(future));
+  msg::MapPatch garbage;
+  garbage.stamp = rig.ex.now();
+  garbage.width_cells = 3000;
+  ASSERT_TRUE(rig.bus->publish(garbage));
+  msg::UgvStatus bad_status;
+  bad_status.stamp = rig.ex.now();
+  bad_status.ugv_id = 200;
+  ASSERT_TRUE(rig.bus->publish(bad_status));
+  rig.ex.run_until(rig.ex.now() + 200ms);
+  EXPECT_EQ(rig.ugv->health().rpe_rejected, 2u);
+  EXPECT_EQ(rig.ugv->health().patches_rejected, 1u);
+  EXPECT_EQ(rig.ugv->health().statuses_rejected, 1u);
+  ASSERT_TRUE(rig.run_until([&] { return rig.ugv->mode() == msg::UgvMode::kArrived; }, 30s));
+}
+
+TEST(UgvNavTask, StepsAllocateNothingInSteadyState) {
+  Rig rig(Vec2(0.0, 15.0), Vec3(0, 5, 2));
+  rig.publish_map(-6.4, -3.2, 6.4, 19.2);
+  rig.ex.run_until(TimePoint{2s});  // warm-up: initialised, planned, driving
+  ASSERT_EQ(rig.ugv->mode(), msg::UgvMode::kDriving);
+  const auto plans_before = rig.ugv->health().plans;
+  {
+    test::AllocationCounter counter;
+    for (int i = 0; i < 1000; ++i)
+      rig.ex.step();  // 1000 executor instants ~ 10 s
+    EXPECT_EQ(counter.count(), 0u);
+  }
+  EXPECT_GE(rig.ugv->health().plans - plans_before, 8u);  // replanning was part of it
+  EXPECT_GT(rig.world->travelled, 3.0);
+}

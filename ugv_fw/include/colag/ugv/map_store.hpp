@@ -1,0 +1,74 @@
+#pragma once
+// The UGV's copy of the map (paper Sec. III-B/C): a 2-D grid of free / occupied / unknown cells
+// filled by the UAV's map patches, and two views kept up to date incrementally:
+// - P-Map  (planning): occupied cells inflated by plan_inflation_m; unknown counts as free.
+// - CP-Map (collision prediction): occupied and unknown cells inflated by
+//   predict_inflation_m; everything is unknown (blocked) until patches arrive.
+// Inflation is exact in the safe direction: a cell is blocked when any point of it is within
+// the radius of any point of a source cell (square-to-square distance), so "not blocked" means
+// "more than the radius from every obstacle cell".
+#include <array>
+#include <cstdint>
+
+#include "colag/common/grid2d.hpp"
+#include "colag/common/map_patch_codec.hpp"
+#include "colag/common/static_vector.hpp"
+#include "colag/common/status.hpp"
+#include "colag/msg/map_patch.hpp"
+
+namespace colag::ugv {
+
+struct MapStoreConfig {
+  double plan_inflation_m = 0.4;      // robot radius + clearance kept by the planner
+  double predict_inflation_m = 0.25;  // robot radius: a 3-sigma ellipse touching means contact
+};
+
+struct MapStoreCounters {
+  std::uint64_t patches_applied = 0;
+  std::uint64_t patches_rejected = 0;
+  std::uint64_t cells_changed = 0;
+  std::uint64_t plan_cells_blocked = 0;  // P-Map cells that became blocked (replanning trigger)
+};
+
+class MapStore {
+ public:
+  static constexpr int kMaxInflationCells = 8;  // 0.8 m at 0.1 m: the disc tables' capacity
+
+  explicit MapStore(const MapStoreConfig& config = {});
+
+  // Validates the whole patch (geometry, payload) before touching the map: a bad patch is
+  // rejected and counted, never half-applied.
+  Status apply(const msg::MapPatch& patch);
+
+  const GridGeometry2d& geometry() const { return kWorldGrid2d; }
+  // Outside the grid: unknown, and blocked in both views.
+  CellState state(CellIndex c) const;
+  bool plan_blocked(CellIndex c) const;
+  bool predict_blocked(CellIndex c) const;
+  // By row-major index of an in-grid cell (the planner's inner loop).
+  bool plan_blocked_at(std::size_t i) const { return plan_count_[i] > 0; }
+  bool predict_blocked_at(std::size_t i) const { return predict_count_[i] > 0; }
+  bool plan_blocked(const Vec2& p) const { return plan_blocked(geometry().cell_of(p)); }
+  bool predict_blocked(const Vec2& p) const { return predict_blocked(geometry().cell_of(p)); }
+
+  const MapStoreConfig& config() const { return config_; }
+  const MapStoreCounters& counters() const { return counters_; }
+
+ private:
+  using Disc = StaticVector<CellIndex, (2 * kMaxInflationCells + 3) * (2 * kMaxInflationCells + 3)>;
+  using Counts = std::array<std::uint16_t, limits::kGridCells2d>;
+  static void make_disc(double radius_m, Disc& out);
+  void stamp(CellIndex c, const Disc& disc, Counts& counts, int delta);
+  void set_cell(CellIndex c, CellState s);
+
+  MapStoreConfig config_;
+  MapStoreCounters counters_;
+  std::array<CellState, limits::kGridCells2d> state_;
+  Counts plan_count_;     // occupied cells within plan_inflation_m
+  Counts predict_count_;  // occupied or unknown cells within predict_inflation_m
+  Disc plan_disc_;
+  Disc predict_disc_;
+  PatchCells scratch_;
+};
+
+}  // namespace colag::ugv

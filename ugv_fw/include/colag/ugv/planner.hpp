@@ -1,0 +1,85 @@
+#pragma once
+// Global path planner on the P-Map: A* over the 8-connected grid (no corner cutting, octile
+// heuristic), then line-of-sight shortcutting ("string pulling") into an any-angle polyline
+// whose segments cross only free P-Map cells. Static memory: per-cell arrays sized from the
+// limits header, reset between searches by a generation counter instead of clearing.
+// Other UGVs enter as discs blocked for this search only.
+#include <array>
+#include <cstdint>
+#include <span>
+
+#include "colag/common/limits.hpp"
+#include "colag/common/static_vector.hpp"
+#include "colag/ugv/map_store.hpp"
+
+namespace colag::ugv {
+
+struct DiscObstacle {
+  Vec2 center = Vec2::Zero();
+  double radius_m = 0.0;
+};
+
+struct PlannerConfig {
+  std::size_t max_expansions = limits::kGridCells2d;
+  double escape_radius_m = 1.0;  // how far the start/goal may be moved out of blocked cells
+};
+
+enum class PlanResult : std::uint8_t { kOk, kNoPath, kStartBlocked, kGoalBlocked };
+const char* to_string(PlanResult r);
+
+struct Path {
+  StaticVector<Vec2, limits::kMaxWaypoints> waypoints;  // starts at the start, ends at the goal
+  double length_m = 0.0;
+};
+
+class Planner {
+ public:
+  explicit Planner(const PlannerConfig& config = {}) : config_(config) {}
+
+  PlanResult plan(const MapStore& map, const Vec2& start, const Vec2& goal,
+                  std::span<const DiscObstacle> others, Path& out);
+
+  std::size_t last_expansions() const { return expansions_; }
+  // Length of the last A* grid path (before shortcutting), metres.
+  double last_grid_cost_m() const { return grid_cost_m_; }
+
+ private:
+  bool blocked(std::size_t i) const {
+    return map_->plan_blocked_at(i) || overlay_[i] == generation_;
+  }
+  bool blocked(CellIndex c) const {
+    return !geometry().contains(c) || blocked(geometry().index(c));
+  }
+  const GridGeometry2d& geometry() const { return kWorldGrid2d; }
+  bool nearest_free(CellIndex from, CellIndex& out) const;
+  bool search(CellIndex start, CellIndex goal);
+  bool line_of_sight(const Vec2& a, const Vec2& b) const;
+  void smooth(const Vec2& start, const Vec2& goal, Path& out);
+
+  // Indexed binary heap on f (ties: smaller h first).
+  void heap_push(std::int32_t cell);
+  void heap_decrease(std::int32_t cell);
+  std::int32_t heap_pop();
+  void sift_up(std::int32_t pos);
+  void sift_down(std::int32_t pos);
+  bool before(std::int32_t a, std::int32_t b) const {
+    return f_[a] < f_[b] || (f_[a] == f_[b] && f_[a] - g_[a] < f_[b] - g_[b]);
+  }
+
+  PlannerConfig config_;
+  const MapStore* map_ = nullptr;
+  std::uint32_t generation_ = 0;
+  std::size_t expansions_ = 0;
+  double grid_cost_m_ = 0.0;
+  std::array<std::uint32_t, limits::kGridCells2d> seen_{};     // == generation_: g_/f_ valid
+  std::array<std::uint32_t, limits::kGridCells2d> overlay_{};  // == generation_: other UGV
+  std::array<float, limits::kGridCells2d> g_{};
+  std::array<float, limits::kGridCells2d> f_{};
+  std::array<std::int32_t, limits::kGridCells2d> parent_{};
+  std::array<std::int32_t, limits::kGridCells2d> heap_pos_{};  // -1: closed
+  std::array<std::int32_t, limits::kGridCells2d> heap_{};
+  std::int32_t heap_size_ = 0;
+  StaticVector<CellIndex, limits::kMaxPathPoints> cells_;  // raw A* path, start first
+};
+
+}  // namespace colag::ugv

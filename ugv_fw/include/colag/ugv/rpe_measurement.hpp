@@ -1,0 +1,36 @@
+#pragma once
+// From the UAV's messages to an EKF measurement (paper Eq. (6)-(7)): the UGV's world pose is
+// the UAV's odometry at the detection time composed with the relative pose; the RPE
+// covariance is rotated into the world frame. The UAV odometry is kept for ~1 s and
+// interpolated at the detection stamp; pairs more than `tolerance` apart are refused.
+#include "colag/common/limits.hpp"
+#include "colag/common/ring_buffer.hpp"
+#include "colag/common/status.hpp"
+#include "colag/common/ugv_ekf.hpp"
+#include "colag/msg/relative_pose.hpp"
+#include "colag/msg/uav_odometry.hpp"
+
+namespace colag::ugv {
+
+class UavOdometryHistory {
+ public:
+  // Stores a sample; refuses non-finite values, non-unit orientations and stamps that do not
+  // increase.
+  Status push(const msg::UavOdometry& m);
+  // The UAV pose at t: interpolated between the samples around t, or the nearest sample if it
+  // is within `tolerance` (t outside the kept history).
+  bool pose_at(TimePoint t, Duration tolerance, Pose3& out) const;
+  TimePoint newest() const { return entries_.empty() ? TimePoint::min() : entries_.back().t; }
+
+ private:
+  struct Entry {
+    TimePoint t;
+    Pose3 pose;
+  };
+  RingBuffer<Entry, limits::kUavOdometryHistory> entries_;
+};
+
+// The UGV's pose in the world frame with its covariance; rejects malformed relative poses.
+Result<PoseMeasurement> world_measurement(const msg::RelativePose& rpe, const Pose3& uav_pose);
+
+}  // namespace colag::ugv

@@ -1,0 +1,50 @@
+#pragma once
+// Every parameter of the UGV navigation task, with the defaults of DESIGN.md / the paper.
+#include "colag/common/geometry.hpp"
+#include "colag/common/time.hpp"
+#include "colag/common/ugv_ekf.hpp"
+#include "colag/msg/robot_id.hpp"
+#include "colag/ugv/collision_predictor.hpp"
+#include "colag/ugv/controller.hpp"
+#include "colag/ugv/map_store.hpp"
+#include "colag/ugv/planner.hpp"
+#include "colag/ugv/support_protocol.hpp"
+#include "colag/ugv/trajectory.hpp"
+
+namespace colag::ugv {
+
+struct UgvNavConfig {
+  RobotId id = 0;
+  Vec2 goal = Vec2::Zero();
+  // Where the robot is believed to start (mission plan). Used only to call the UAV before the
+  // first relative pose initialises the estimator; never fused.
+  bool has_start_guess = false;
+  Pose2 start_guess;
+  double start_guess_sigma_m = 1.0;
+
+  double body_radius_m = 0.25;
+  UgvEkfConfig ekf;
+  MapStoreConfig map;
+  PlannerConfig planner;
+  TrajectoryLimits limits;
+  ControllerConfig controller;
+  PredictorConfig predictor;
+  SupportConfig support;
+
+  double stop_time_s = 0.4;        // t_c: stop when a collision is predicted sooner
+  double resume_margin_s = 0.2;    // hysteresis before driving on
+  double robot_stop_time_s = 1.5;  // stop for another UGV predicted closer than this
+  Duration replan_period = std::chrono::seconds(1);
+  Duration no_path_retry = std::chrono::seconds(1);
+  double replan_cross_track_m = 0.5;  // off the path by more than this => replan
+  Duration odometry_timeout = std::chrono::milliseconds(100);
+  Duration odometry_startup_grace = std::chrono::seconds(1);
+  Duration rpe_match_tolerance = std::chrono::milliseconds(100);
+  Duration max_message_age = std::chrono::seconds(2);         // older RPE / patches are ignored
+  Duration max_future_skew = std::chrono::milliseconds(200);  // newer than now + this: rejected
+  Duration other_ugv_timeout = std::chrono::seconds(3);
+  double other_ugv_range_m = 6.0;  // other UGVs farther than this are not planned around
+  bool use_rpe_updates = true;     // false: the ablation "RPE only initialises the EKF"
+};
+
+}  // namespace colag::ugv

@@ -1,0 +1,149 @@
+#pragma once
+// The UGV navigation task: estimator, map store, planner, controller, collision predictor and
+// support protocol, driven by two loops of one executor table:
+//   control_loop()  50 Hz: wheel odometry -> EKF predict, RPE -> EKF update, tracking -> Drive
+//   planning_loop() 10 Hz: map patches, other UGVs, (re)planning, collision prediction,
+//                          support requests, UgvStatus
+// Pure task code: HAL and transport interfaces only; no heap, no exceptions, no OS calls in
+// step(); every malformed input is rejected and counted in health().
+#include <array>
+#include <cstdint>
+
+#include "colag/hal/drive.hpp"
+#include "colag/hal/wheel_odometry.hpp"
+#include "colag/platform/readers.hpp"
+#include "colag/ugv/rpe_measurement.hpp"
+#include "colag/ugv/ugv_nav_config.hpp"
+
+namespace colag::ugv {
+
+struct UgvHealth {
+  std::uint64_t odometry_rejected = 0;
+  std::uint64_t uav_odometry_rejected = 0;
+  std::uint64_t rpe_rejected = 0;   // malformed, wrong robot, too old / from the future
+  std::uint64_t rpe_unmatched = 0;  // no UAV odometry within the tolerance of its stamp
+  std::uint64_t rpe_outliers = 0;   // outside the EKF gate
+  std::uint64_t rpe_ignored = 0;    // ablation no-rpe: used only to initialise
+  std::uint64_t patches_rejected = 0;
+  std::uint64_t statuses_rejected = 0;
+  std::uint64_t drive_errors = 0;
+  std::uint64_t watchdog_trips = 0;  // wheel odometry went silent
+  std::uint64_t plans = 0;
+  std::uint64_t plan_failures = 0;
+  std::uint64_t support_messages = 0;
+
+  std::uint64_t rejected_inputs() const {
+    return odometry_rejected + uav_odometry_rejected + rpe_rejected + rpe_unmatched + rpe_outliers +
+           patches_rejected + statuses_rejected;
+  }
+};
+
+class UgvNavTask {
+ public:
+  UgvNavTask(const UgvNavConfig& config, platform::Transport& transport,
+             hal::WheelOdometry& odometry, hal::Drive& drive);
+  UgvNavTask(const UgvNavTask&) = delete;
+  UgvNavTask& operator=(const UgvNavTask&) = delete;
+
+  platform::Task& control_loop() { return control_loop_; }
+  platform::Task& planning_loop() { return planning_loop_; }
+
+  msg::UgvMode mode() const { return mode_; }
+  const UgvEkf& estimator() const { return ekf_; }
+  const MapStore& map() const { return map_; }
+  const Trajectory& trajectory() const { return trajectory_; }
+  const Prediction& prediction() const { return prediction_; }
+  const UgvHealth& health() const { return health_; }
+  double waiting_time_s() const { return to_seconds(waiting_); }
+  bool requesting_support() const { return support_.requesting(); }
+  const UgvNavConfig& config() const { return config_; }
+
+ private:
+  class Loop final : public platform::Task {
+   public:
+    using Step = void (UgvNavTask::*)(TimePoint);
+    Loop(UgvNavTask& owner, const char* name, Step fn) : owner_(owner), name_(name), step_(fn) {}
+    const char* name() const override { return name_; }
+    Status init(TimePoint now) override { return owner_.init(now); }
+    void step(TimePoint now) override { (owner_.*step_)(now); }
+
+   private:
+    UgvNavTask& owner_;
+    const char* name_;
+    Step step_;
+  };
+  struct OtherUgv {
+    bool known = false;
+    TimePoint heard{};
+    msg::UgvStatus status;
+  };
+
+  Status init(TimePoint now);
+  void control_step(TimePoint now);
+  void planning_step(TimePoint now);
+
+  // control loop parts
+  void read_odometry(TimePoint now);
+  void read_relative_poses(TimePoint now);
+  void drive(TimePoint now, double dt_s);
+  // planning loop parts
+  void read_map_patches(TimePoint now);
+  void read_other_ugvs(TimePoint now);
+  void collect_others(TimePoint now);
+  bool replan_needed(TimePoint now) const;
+  void replan(TimePoint now);
+  void predict_and_request(TimePoint now);
+  void publish_status(TimePoint now);
+
+  bool fresh(TimePoint stamp, TimePoint now) const {
+    return stamp <= now + config_.max_future_skew && stamp >= now - config_.max_message_age;
+  }
+  void command(TimePoint now, double v, double omega);
+
+  UgvNavConfig config_;
+  platform::Transport& transport_;
+  hal::WheelOdometry& odometry_;
+  hal::Drive& drive_;
+  Loop control_loop_;
+  Loop planning_loop_;
+  bool initialised_ = false;
+
+  platform::QueueReader<msg::UavOdometry, 32> uav_odometry_in_;
+  platform::QueueReader<msg::RelativePose, 16> rpe_in_;
+  platform::QueueReader<msg::MapPatch, 8> patches_in_;
+  platform::QueueReader<msg::UgvStatus, 2 * limits::kMaxUgvs> statuses_in_;
+
+  UgvEkf ekf_;
+  UavOdometryHistory uav_history_;
+  MapStore map_;
+  Planner planner_;
+  Path path_;
+  Trajectory trajectory_;
+  Controller controller_;
+  CollisionPredictor predictor_;
+  Prediction prediction_;
+  SupportProtocol support_;
+  std::array<OtherUgv, limits::kMaxUgvs> others_{};
+  StaticVector<OtherRobot, limits::kMaxUgvs> others_predict_;
+  StaticVector<DiscObstacle, limits::kMaxUgvs> others_plan_;
+
+  msg::UgvMode mode_ = msg::UgvMode::kWaitingForInit;
+  bool fault_ = false;
+  bool stopped_for_support_ = false;
+  bool stopped_for_robot_ = false;
+  bool arrived_ = false;
+  bool replan_requested_ = true;
+  bool no_path_ = false;
+  std::uint64_t plan_blocked_seen_ = 0;
+  std::uint64_t ekf_resets_seen_ = 0;
+  TimePoint started_{};
+  TimePoint last_control_{};
+  TimePoint last_plan_{};
+  Duration waiting_{};
+  double cross_track_m_ = 0.0;
+  double v_cmd_ = 0.0;
+  double omega_cmd_ = 0.0;
+  UgvHealth health_;
+};
+
+}  // namespace colag::ugv

@@ -1,0 +1,104 @@
+#include "colag/ugv/map_store.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace colag::ugv {
+
+MapStore::MapStore(const MapStoreConfig& config) : config_(config) {
+  make_disc(config_.plan_inflation_m, plan_disc_);
+  make_disc(config_.predict_inflation_m, predict_disc_);
+  state_.fill(CellState::kUnknown);
+  plan_count_.fill(0);
+  predict_count_.fill(0);
+  const auto& g = geometry();
+  for (int y = 0; y < g.cells_y(); ++y) {
+    for (int x = 0; x < g.cells_x(); ++x)
+      stamp({x, y}, predict_disc_, predict_count_, +1);
+  }
+}
+
+void MapStore::make_disc(double radius_m, Disc& out) {
+  const double r_cells = std::clamp(radius_m, 0.0, kMaxInflationCells * limits::kGridResolution_m) /
+                         limits::kGridResolution_m;
+  const int n = static_cast<int>(std::ceil(r_cells)) + 1;
+  out.clear();
+  for (int dy = -n; dy <= n; ++dy) {
+    for (int dx = -n; dx <= n; ++dx) {
+      // Gap between the two squares, in cells.
+      const double gx = std::max(0, std::abs(dx) - 1), gy = std::max(0, std::abs(dy) - 1);
+      if (gx * gx + gy * gy <= r_cells * r_cells + 1e-9) (void)out.push_back({dx, dy});
+    }
+  }
+}
+
+void MapStore::stamp(CellIndex c, const Disc& disc, Counts& counts, int delta) {
+  const auto& g = geometry();
+  for (const CellIndex& d : disc) {
+    const CellIndex n{c.x + d.x, c.y + d.y};
+    if (!g.contains(n)) continue;
+    auto& k = counts[g.index(n)];
+    k = static_cast<std::uint16_t>(k + delta);
+    if (&counts == &plan_count_ && delta > 0 && k == 1) ++counters_.plan_cells_blocked;
+  }
+}
+
+void MapStore::set_cell(CellIndex c, CellState s) {
+  const std::size_t i = geometry().index(c);
+  const CellState old = state_[i];
+  if (old == s) return;
+  ++counters_.cells_changed;
+  if (old == CellState::kOccupied) stamp(c, plan_disc_, plan_count_, -1);
+  if (s == CellState::kOccupied) stamp(c, plan_disc_, plan_count_, +1);
+  const bool was_blocking = old != CellState::kFree, blocking = s != CellState::kFree;
+  if (was_blocking && !blocking) stamp(c, predict_disc_, predict_count_, -1);
+  if (!was_blocking && blocking) stamp(c, predict_disc_, predict_count_, +1);
+  state_[i] = s;
+}
+
+Status MapStore::apply(const msg::MapPatch& patch) {
+  const auto reject = [&](Status s) {
+    ++counters_.patches_rejected;
+    return s;
+  };
+  const auto& g = geometry();
+  if (!std::isfinite(patch.resolution_m) || std::abs(patch.resolution_m - g.resolution()) > 1e-9) {
+    return reject({Errc::kInvalidArgument, "map patch: wrong resolution"});
+  }
+  if (!std::isfinite(patch.origin_x_m) || !std::isfinite(patch.origin_y_m)) {
+    return reject({Errc::kInvalidArgument, "map patch: origin not finite"});
+  }
+  const double fx = (patch.origin_x_m - g.origin_x()) / g.resolution();
+  const double fy = (patch.origin_y_m - g.origin_y()) / g.resolution();
+  if (std::abs(fx - std::round(fx)) > 1e-6 || std::abs(fy - std::round(fy)) > 1e-6) {
+    return reject({Errc::kInvalidArgument, "map patch: origin not on the grid"});
+  }
+  if (std::abs(fx) > 1e6 || std::abs(fy) > 1e6) {
+    return reject({Errc::kOutOfRange, "map patch: outside the map"});
+  }
+  const CellIndex o{static_cast<int>(std::lround(fx)), static_cast<int>(std::lround(fy))};
+  if (!g.contains(o) ||
+      !g.contains(CellIndex{o.x + patch.width_cells - 1, o.y + patch.height_cells - 1})) {
+    return reject({Errc::kOutOfRange, "map patch: outside the map"});
+  }
+  if (Status s = decode_patch(patch, scratch_); !s) return reject(s);
+
+  for (int y = 0; y < scratch_.height; ++y) {
+    for (int x = 0; x < scratch_.width; ++x)
+      set_cell({o.x + x, o.y + y}, scratch_.at(x, y));
+  }
+  ++counters_.patches_applied;
+  return Status::ok();
+}
+
+CellState MapStore::state(CellIndex c) const {
+  return geometry().contains(c) ? state_[geometry().index(c)] : CellState::kUnknown;
+}
+bool MapStore::plan_blocked(CellIndex c) const {
+  return !geometry().contains(c) || plan_count_[geometry().index(c)] > 0;
+}
+bool MapStore::predict_blocked(CellIndex c) const {
+  return !geometry().contains(c) || predict_count_[geometry().index(c)] > 0;
+}
+
+}  // namespace colag::ugv

@@ -1,0 +1,338 @@
+#include "colag/ugv/ugv_nav_task.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+
+namespace colag::ugv {
+
+namespace {
+
+// Largest 1-sigma extent of a 2-D covariance (square root of its largest eigenvalue).
+double sigma_major(const Mat2& cov) {
+  const double tr = cov(0, 0) + cov(1, 1);
+  const double det = cov(0, 0) * cov(1, 1) - cov(0, 1) * cov(1, 0);
+  const double l = 0.5 * tr + std::sqrt(std::max(0.0, 0.25 * tr * tr - det));
+  return std::sqrt(std::max(0.0, l));
+}
+
+bool finite_status(const msg::UgvStatus& s) {
+  if (!std::isfinite(s.position_m[0]) || !std::isfinite(s.position_m[1])) return false;
+  for (double c : s.covariance) {
+    if (!std::isfinite(c)) return false;
+  }
+  return static_cast<unsigned>(s.mode) <= static_cast<unsigned>(msg::UgvMode::kFault);
+}
+
+}  // namespace
+
+UgvNavTask::UgvNavTask(const UgvNavConfig& config, platform::Transport& transport,
+                       hal::WheelOdometry& odometry, hal::Drive& drive)
+    : config_(config),
+      transport_(transport),
+      odometry_(odometry),
+      drive_(drive),
+      control_loop_(*this, "ugv_control", &UgvNavTask::control_step),
+      planning_loop_(*this, "ugv_planning", &UgvNavTask::planning_step),
+      ekf_(config.ekf),
+      map_(config.map),
+      planner_(config.planner),
+      controller_(config.controller, config.limits),
+      predictor_(config.predictor, config.ekf.noise),
+      support_(config.support) {}
+
+Status UgvNavTask::init(TimePoint now) {
+  if (initialised_) return Status::ok();  // both loops call init; the first one does the work
+  if (config_.id >= limits::kMaxUgvs) return {Errc::kInvalidArgument, "UGV id out of range"};
+  if (Status s = uav_odometry_in_.attach(transport_); !s) return s;
+  if (Status s = rpe_in_.attach(transport_, config_.id); !s) return s;
+  if (Status s = patches_in_.attach(transport_, config_.id); !s) return s;
+  if (Status s = statuses_in_.attach(transport_); !s) return s;
+  started_ = last_control_ = now;
+  last_plan_ = TimePoint::min();
+  initialised_ = true;
+  return Status::ok();
+}
+
+// --- control loop (50 Hz)
+// -------------------------------------------------------------------------
+
+void UgvNavTask::control_step(TimePoint now) {
+  const double dt = std::clamp(to_seconds(now - last_control_), 0.0, 0.1);
+  last_control_ = now;
+  read_odometry(now);
+  read_relative_poses(now);
+  drive(now, dt);
+}
+
+void UgvNavTask::read_odometry(TimePoint now) {
+  hal::WheelOdometrySample s;
+  while (odometry_.poll(s)) {
+    if (s.stamp > now + config_.max_future_skew || !ekf_.predict(s.stamp, s.v_mps, s.omega_radps)) {
+      ++health_.odometry_rejected;
+    }
+  }
+  // Watchdog: a blind robot without odometry does not know where it is going.
+  const TimePoint last = odometry_.last_sample_time();
+  const bool silent = last == TimePoint{} ? now - started_ > config_.odometry_startup_grace
+                                          : now - last > config_.odometry_timeout;
+  if (silent && !fault_) ++health_.watchdog_trips;
+  fault_ = silent;
+}
+
+void UgvNavTask::read_relative_poses(TimePoint now) {
+  msg::UavOdometry od;
+  while (uav_odometry_in_.pop(od)) {
+    if (!uav_history_.push(od)) ++health_.uav_odometry_rejected;
+  }
+  msg::RelativePose rpe;
+  while (rpe_in_.pop(rpe)) {
+    if (rpe.ugv_id != config_.id || !fresh(rpe.stamp, now)) {
+      ++health_.rpe_rejected;
+      continue;
+    }
+    Pose3 uav;
+    if (!uav_history_.pose_at(rpe.stamp, config_.rpe_match_tolerance, uav)) {
+      ++health_.rpe_unmatched;
+      continue;
+    }
+    const Result<PoseMeasurement> z = world_measurement(rpe, uav);
+    if (!z) {
+      ++health_.rpe_rejected;
+      continue;
+    }
+    if (ekf_.initialized() && !config_.use_rpe_updates) {
+      ++health_.rpe_ignored;
+      continue;
+    }
+    switch (ekf_.update(z.value())) {
+      case UgvEkf::Update::kInitialized:
+      case UgvEkf::Update::kReset:
+        replan_requested_ = true;
+        break;
+      case UgvEkf::Update::kApplied:
+        break;
+      case UgvEkf::Update::kRejectedGate:
+        ++health_.rpe_outliers;
+        break;
+      case UgvEkf::Update::kRejectedStale:
+      case UgvEkf::Update::kRejectedInvalid:
+        ++health_.rpe_rejected;
+        break;
+    }
+  }
+}
+
+void UgvNavTask::command(TimePoint now, double v, double omega) {
+  v_cmd_ = v;
+  omega_cmd_ = omega;
+  const Status s = (v == 0.0 && omega == 0.0) ? drive_.stop(now) : drive_.command({now, v, omega});
+  if (!s) ++health_.drive_errors;
+}
+
+void UgvNavTask::drive(TimePoint now, double dt) {
+  if (fault_) {
+    mode_ = msg::UgvMode::kFault;
+  } else if (!ekf_.initialized()) {
+    mode_ = msg::UgvMode::kWaitingForInit;
+  } else if (arrived_) {
+    mode_ = msg::UgvMode::kArrived;
+  } else if (stopped_for_support_) {
+    mode_ = msg::UgvMode::kWaitingForSupport;
+  } else if (no_path_) {
+    mode_ = msg::UgvMode::kNoPath;
+  } else {
+    mode_ = msg::UgvMode::kDriving;
+  }
+  if (mode_ == msg::UgvMode::kWaitingForSupport) waiting_ += seconds(dt);
+  if (mode_ != msg::UgvMode::kDriving || stopped_for_robot_ || trajectory_.empty()) {
+    controller_.hold();
+    command(now, 0.0, 0.0);
+    return;
+  }
+  const ControlOutput out = controller_.step(ekf_.pose(), trajectory_, dt);
+  cross_track_m_ = out.cross_track_m;
+  if (out.at_goal && (ekf_.pose().p - config_.goal).norm() <= config_.controller.goal_tolerance_m) {
+    arrived_ = true;
+    mode_ = msg::UgvMode::kArrived;
+    command(now, 0.0, 0.0);
+    return;
+  }
+  if (out.at_goal) replan_requested_ = true;  // the end of a cut plan: plan the rest
+  command(now, out.v_mps, out.omega_radps);
+}
+
+// --- planning loop (10 Hz)
+// ------------------------------------------------------------------------
+
+void UgvNavTask::planning_step(TimePoint now) {
+  read_map_patches(now);
+  read_other_ugvs(now);
+  if (!ekf_.initialized()) {
+    // Not localised yet: ask the UAV to come to where the mission plan says we are.
+    SupportNeed need;
+    need.needed = config_.has_start_guess;
+    need.collision_point = need.support_point = config_.start_guess.p;
+    msg::CollisionInfo ci;
+    if (support_.update(now, config_.id, need, ci) && transport_.publish(ci))
+      ++health_.support_messages;
+    publish_status(now);
+    return;
+  }
+  if (ekf_.counters().resets != ekf_resets_seen_) {
+    ekf_resets_seen_ = ekf_.counters().resets;
+    replan_requested_ = true;
+  }
+  collect_others(now);
+  if (!arrived_ && !fault_ && replan_needed(now)) replan(now);
+  predict_and_request(now);
+  publish_status(now);
+}
+
+void UgvNavTask::read_map_patches(TimePoint now) {
+  msg::MapPatch patch;
+  while (patches_in_.pop(patch)) {
+    if (patch.ugv_id != config_.id || !fresh(patch.stamp, now) || !map_.apply(patch)) {
+      ++health_.patches_rejected;
+    }
+  }
+  // New obstacles on the remaining path => replan.
+  if (map_.counters().plan_cells_blocked != plan_blocked_seen_) {
+    plan_blocked_seen_ = map_.counters().plan_cells_blocked;
+    for (std::size_t i = controller_.progress(); i < trajectory_.size(); ++i) {
+      if (map_.plan_blocked(trajectory_[i].p)) {
+        replan_requested_ = true;
+        break;
+      }
+    }
+  }
+}
+
+void UgvNavTask::read_other_ugvs(TimePoint now) {
+  msg::UgvStatus s;
+  while (statuses_in_.pop(s)) {
+    if (s.ugv_id == config_.id) continue;  // our own, echoed back
+    if (s.ugv_id >= limits::kMaxUgvs || !finite_status(s) || !fresh(s.stamp, now)) {
+      ++health_.statuses_rejected;
+      continue;
+    }
+    OtherUgv& o = others_[s.ugv_id];
+    if (o.known && s.stamp <= o.status.stamp) continue;  // duplicate or reordered
+    o.known = true;
+    o.heard = now;
+    o.status = s;
+  }
+}
+
+void UgvNavTask::collect_others(TimePoint now) {
+  others_predict_.clear();
+  others_plan_.clear();
+  const Vec2 me = ekf_.pose().p;
+  for (const OtherUgv& o : others_) {
+    if (!o.known || now - o.heard > config_.other_ugv_timeout) continue;
+    const Vec2 p(o.status.position_m[0], o.status.position_m[1]);
+    if ((p - me).norm() > config_.other_ugv_range_m) continue;
+    Mat2 cov;
+    cov << o.status.covariance[0], o.status.covariance[1], o.status.covariance[3],
+        o.status.covariance[4];
+    const double extent =
+        std::min(3.0 * sigma_major(cov), 2.0);  // capped: a lost robot is not a wall
+    (void)others_predict_.push_back(
+        {p, config_.map.predict_inflation_m + config_.body_radius_m + extent});
+    (void)others_plan_.push_back(
+        {p, config_.map.plan_inflation_m + config_.body_radius_m + extent});
+  }
+}
+
+bool UgvNavTask::replan_needed(TimePoint now) const {
+  if (no_path_) return now - last_plan_ >= config_.no_path_retry;
+  return replan_requested_ || trajectory_.empty() || now - last_plan_ >= config_.replan_period ||
+         cross_track_m_ > config_.replan_cross_track_m;
+}
+
+void UgvNavTask::replan(TimePoint now) {
+  last_plan_ = now;
+  replan_requested_ = false;
+  ++health_.plans;
+  const PlanResult r = planner_.plan(map_, ekf_.pose().p, config_.goal, others_plan_, path_);
+  if (r != PlanResult::kOk || !trajectory_.build(path_, controller_.last_v(), config_.limits)) {
+    ++health_.plan_failures;
+    no_path_ = true;
+    trajectory_.clear();
+    return;
+  }
+  no_path_ = false;
+  controller_.reset();
+  cross_track_m_ = 0.0;
+}
+
+void UgvNavTask::predict_and_request(TimePoint now) {
+  SupportNeed need;
+  if (arrived_ || trajectory_.empty()) {
+    prediction_ = Prediction{};
+  } else {
+    predictor_.predict(ekf_.pose(), ekf_.covariance(), trajectory_, controller_.progress(), map_,
+                       others_predict_, prediction_);
+  }
+  // The first colliding ellipse was sampled up to one step after the true first contact.
+  const double t_soonest = prediction_.time_s - predictor_.config().dt_s;
+  const bool was_stopped = stopped_for_support_ || stopped_for_robot_;
+  switch (prediction_.kind) {
+    case CollisionKind::kMap:
+      need.needed = true;
+      need.collision_point = prediction_.point;
+      need.support_point = prediction_.support_point;
+      need.time_to_collision_s = prediction_.time_s;
+      stopped_for_support_ =
+          t_soonest < config_.stop_time_s + (stopped_for_support_ ? config_.resume_margin_s : 0.0);
+      stopped_for_robot_ = false;
+      break;
+    case CollisionKind::kRobot:
+      // The UAV cannot help here: replan around the other UGV and wait if it is close.
+      stopped_for_support_ = false;
+      stopped_for_robot_ = t_soonest < config_.robot_stop_time_s;
+      replan_requested_ = true;
+      break;
+    case CollisionKind::kNone:
+      stopped_for_support_ = stopped_for_robot_ = false;
+      break;
+  }
+  if (was_stopped && !stopped_for_support_ && !stopped_for_robot_) replan_requested_ = true;
+  msg::CollisionInfo ci;
+  if (support_.update(now, config_.id, need, ci) && transport_.publish(ci))
+    ++health_.support_messages;
+}
+
+void UgvNavTask::publish_status(TimePoint now) {
+  msg::UgvStatus s;
+  s.stamp = now;
+  s.ugv_id = config_.id;
+  s.mode = mode_;
+  if (ekf_.initialized()) {
+    const Pose2 p = ekf_.pose();
+    s.position_m[0] = p.p.x();
+    s.position_m[1] = p.p.y();
+    s.yaw_rad = p.yaw_rad;
+    const Mat3& P = ekf_.covariance();
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c)
+        s.covariance[3 * r + c] = P(r, c);
+    }
+  } else if (config_.has_start_guess) {
+    s.position_m[0] = config_.start_guess.p.x();
+    s.position_m[1] = config_.start_guess.p.y();
+    s.yaw_rad = config_.start_guess.yaw_rad;
+    const double var = config_.start_guess_sigma_m * config_.start_guess_sigma_m;
+    s.covariance[0] = s.covariance[4] = var;
+    s.covariance[8] = M_PI * M_PI;
+  }
+  s.velocity_mps = v_cmd_;
+  s.yaw_rate_radps = omega_cmd_;
+  s.goal_m[0] = config_.goal.x();
+  s.goal_m[1] = config_.goal.y();
+  s.waiting_time_s = waiting_time_s();
+  s.rejected_inputs = static_cast<std::uint32_t>(health_.rejected_inputs());
+  (void)transport_.publish(s);
+}
+
+}  // namespace colag::ugv
