@@ -8,12 +8,33 @@
 #include "colag/platform/loopback_transport.hpp"
 #include "colag/platform/monotonic_clock.hpp"
 #include "colag/platform/readers.hpp"
-#include "colag/uav/uav_stub_task.hpp"
 
 using namespace colag;
 using namespace std::chrono_literals;
 
 namespace {
+// Placeholder UAV: publishes odometry, counts the UGV statuses it hears.
+class UavStubTask final : public platform::Task {
+ public:
+  explicit UavStubTask(platform::Transport& transport) : transport_(transport) {}
+  const char* name() const override { return "uav_stub"; }
+  Status init(TimePoint) override { return statuses_.attach(transport_); }
+  void step(TimePoint now) override {
+    msg::UgvStatus status;
+    while (statuses_.pop(status))
+      ++statuses_received_;
+    msg::UavOdometry odom;
+    odom.stamp = now;
+    (void)transport_.publish(odom);
+  }
+  std::uint64_t statuses_received() const { return statuses_received_; }
+
+ private:
+  platform::Transport& transport_;
+  platform::QueueReader<msg::UgvStatus, 16> statuses_;
+  std::uint64_t statuses_received_ = 0;
+};
+
 // Placeholder UGV: listens to the UAV's odometry and publishes its status.
 class UgvStubTask final : public platform::Task {
  public:
@@ -39,7 +60,7 @@ int main() {
   platform::MonotonicClock wall;
   platform::LockstepExecutor executor(TimePoint{}, &wall);
   platform::TransportPump pump(bus);
-  uav::UavStubTask uav(bus);
+  UavStubTask uav(bus);
   UgvStubTask ugv(bus);
 
   const platform::TaskEntry table[] = {

@@ -9,10 +9,10 @@
 #include <memory>
 
 #include "box_world_map.hpp"
+#include "colag/common/planner.hpp"
 #include "colag/common/ugv_ekf.hpp"
 #include "colag/ugv/collision_predictor.hpp"
 #include "colag/ugv/controller.hpp"
-#include "colag/ugv/planner.hpp"
 
 using namespace colag;
 using namespace colag::ugv;

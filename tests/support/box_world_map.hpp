@@ -7,8 +7,8 @@
 
 namespace colag::test {
 
-inline bool fill_map_from_world(ugv::MapStore& map, const mock::BoxWorld& world, double x0,
-                                double y0, double x1, double y1) {
+inline bool fill_map_from_world(MapStore& map, const mock::BoxWorld& world, double x0, double y0,
+                                double x1, double y1) {
   const double h = 0.5 * map.geometry().resolution();
   return fill_map(map, x0, y0, x1, y1, [&](const Vec2& p) {
     for (const auto& b : world.boxes) {

@@ -5,12 +5,12 @@
 #include <functional>
 
 #include "colag/common/map_patch_codec.hpp"
-#include "colag/ugv/map_store.hpp"
+#include "colag/common/map_store.hpp"
 
 namespace colag::test {
 
 // Applies patches covering the cells of [x0, x1) x [y0, y1) (world metres).
-inline bool fill_map(ugv::MapStore& map, double x0, double y0, double x1, double y1,
+inline bool fill_map(MapStore& map, double x0, double y0, double x1, double y1,
                      const std::function<CellState(const Vec2&)>& state_at) {
   const auto& g = map.geometry();
   const CellIndex c0 = g.cell_of(Vec2(x0 + 1e-9, y0 + 1e-9));

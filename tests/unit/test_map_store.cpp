@@ -2,12 +2,11 @@
 
 #include <memory>
 
+#include "colag/common/map_store.hpp"
 #include "colag/common/random.hpp"
-#include "colag/ugv/map_store.hpp"
 #include "map_fixtures.hpp"
 
 using namespace colag;
-using namespace colag::ugv;
 
 namespace {
 

@@ -4,13 +4,13 @@
 #include <queue>
 #include <vector>
 
-#include "colag/ugv/grid_line.hpp"
-#include "colag/ugv/planner.hpp"
+#include "colag/common/grid_line.hpp"
+#include "colag/common/planner.hpp"
 #include "colag/ugv/trajectory.hpp"
 #include "map_fixtures.hpp"
 
 using namespace colag;
-using namespace colag::ugv;
+using namespace colag::ugv;  // Trajectory
 
 namespace {
 

@@ -20,7 +20,12 @@ class GridGeometry2d {
  public:
   constexpr GridGeometry2d(double origin_x_m, double origin_y_m, double resolution_m, int cells_x,
                            int cells_y)
-      : ox_(origin_x_m), oy_(origin_y_m), res_(resolution_m), nx_(cells_x), ny_(cells_y) {}
+      : ox_(origin_x_m),
+        oy_(origin_y_m),
+        res_(resolution_m),
+        inv_res_(1.0 / resolution_m),
+        nx_(cells_x),
+        ny_(cells_y) {}
 
   constexpr double resolution() const { return res_; }
   constexpr double origin_x() const { return ox_; }
@@ -34,8 +39,8 @@ class GridGeometry2d {
   }
   bool contains(const Vec2& p) const { return contains(cell_of(p)); }
   CellIndex cell_of(const Vec2& p) const {
-    return {static_cast<int>(std::floor((p.x() - ox_) / res_)),
-            static_cast<int>(std::floor((p.y() - oy_) / res_))};
+    return {static_cast<int>(std::floor((p.x() - ox_) * inv_res_)),
+            static_cast<int>(std::floor((p.y() - oy_) * inv_res_))};
   }
   Vec2 center_of(CellIndex c) const { return {ox_ + (c.x + 0.5) * res_, oy_ + (c.y + 0.5) * res_}; }
   constexpr std::size_t index(CellIndex c) const {
@@ -48,7 +53,7 @@ class GridGeometry2d {
   }
 
  private:
-  double ox_, oy_, res_;
+  double ox_, oy_, res_, inv_res_;  // multiply, don't divide: cell_of is hot
   int nx_, ny_;
 };
 

@@ -9,9 +9,9 @@
 #include <span>
 
 #include "colag/common/ellipse.hpp"
+#include "colag/common/map_store.hpp"
 #include "colag/common/static_vector.hpp"
 #include "colag/common/ugv_motion_model.hpp"
-#include "colag/ugv/map_store.hpp"
 #include "colag/ugv/trajectory.hpp"
 
 namespace colag::ugv {

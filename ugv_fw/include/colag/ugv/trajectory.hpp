@@ -10,8 +10,8 @@
 
 #include "colag/common/geometry.hpp"
 #include "colag/common/limits.hpp"
+#include "colag/common/planner.hpp"
 #include "colag/common/static_vector.hpp"
-#include "colag/ugv/planner.hpp"
 
 namespace colag::ugv {
 

@@ -1,13 +1,13 @@
 #pragma once
 // Every parameter of the UGV navigation task, with the defaults of DESIGN.md / the paper.
 #include "colag/common/geometry.hpp"
+#include "colag/common/map_store.hpp"
+#include "colag/common/planner.hpp"
 #include "colag/common/time.hpp"
 #include "colag/common/ugv_ekf.hpp"
 #include "colag/msg/robot_id.hpp"
 #include "colag/ugv/collision_predictor.hpp"
 #include "colag/ugv/controller.hpp"
-#include "colag/ugv/map_store.hpp"
-#include "colag/ugv/planner.hpp"
 #include "colag/ugv/support_protocol.hpp"
 #include "colag/ugv/trajectory.hpp"
 

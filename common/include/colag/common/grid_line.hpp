@@ -7,7 +7,7 @@
 
 #include "colag/common/grid2d.hpp"
 
-namespace colag::ugv {
+namespace colag {
 
 // Calls visit(CellIndex) for each cell; stops and returns true as soon as visit returns true.
 template <class Visit>
@@ -53,4 +53,4 @@ bool any_cell_on_segment(const GridGeometry2d& g, const Vec2& a, const Vec2& b, 
   return false;
 }
 
-}  // namespace colag::ugv
+}  // namespace colag

@@ -16,7 +16,7 @@
 #include "colag/common/status.hpp"
 #include "colag/msg/map_patch.hpp"
 
-namespace colag::ugv {
+namespace colag {
 
 struct MapStoreConfig {
   double plan_inflation_m = 0.4;      // robot radius + clearance kept by the planner
@@ -71,4 +71,4 @@ class MapStore {
   PatchCells scratch_;
 };
 
-}  // namespace colag::ugv
+}  // namespace colag

@@ -1,9 +1,9 @@
-#include "colag/ugv/map_store.hpp"
+#include "colag/common/map_store.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-namespace colag::ugv {
+namespace colag {
 
 MapStore::MapStore(const MapStoreConfig& config) : config_(config) {
   make_disc(config_.plan_inflation_m, plan_disc_);
@@ -101,4 +101,4 @@ bool MapStore::predict_blocked(CellIndex c) const {
   return !geometry().contains(c) || predict_count_[geometry().index(c)] > 0;
 }
 
-}  // namespace colag::ugv
+}  // namespace colag

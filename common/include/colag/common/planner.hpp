@@ -9,10 +9,10 @@
 #include <span>
 
 #include "colag/common/limits.hpp"
+#include "colag/common/map_store.hpp"
 #include "colag/common/static_vector.hpp"
-#include "colag/ugv/map_store.hpp"
 
-namespace colag::ugv {
+namespace colag {
 
 struct DiscObstacle {
   Vec2 center = Vec2::Zero();
@@ -82,4 +82,4 @@ class Planner {
   StaticVector<CellIndex, limits::kMaxPathPoints> cells_;  // raw A* path, start first
 };
 
-}  // namespace colag::ugv
+}  // namespace colag

@@ -1,11 +1,11 @@
-#include "colag/ugv/planner.hpp"
+#include "colag/common/planner.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "colag/ugv/grid_line.hpp"
+#include "colag/common/grid_line.hpp"
 
-namespace colag::ugv {
+namespace colag {
 
 namespace {
 constexpr float kSqrt2 = 1.41421356F;
@@ -223,4 +223,4 @@ PlanResult Planner::plan(const MapStore& map, const Vec2& start, const Vec2& goa
   return PlanResult::kOk;
 }
 
-}  // namespace colag::ugv
+}  // namespace colag

@@ -1,0 +1,45 @@
+#pragma once
+// A simulated spinning LiDAR (VLP-32-like by default: 32 beams from -25.2 deg upward in
+// 1.2 deg steps, 360 deg in `columns` steps, 8 m range, returns closer than 1 m dropped), ray
+// cast against the box world and the ground plane z = 0. Returns are reported in the sensor
+// frame; beams with no return within range are reported as misses at max range (so the mapper
+// can clear free space along them). Boxes are culled per scan by range and azimuth, so a ray
+// is tested only against the few boxes in its direction.
+#include <span>
+#include <vector>
+
+#include "colag/hal/lidar.hpp"
+#include "colag/mock/box_world.hpp"
+
+namespace colag::mock {
+
+struct LidarPattern {
+  int beams = 32;
+  double lowest_elevation_deg = -25.2;
+  double elevation_step_deg = 1.2;
+  int columns = 1200;  // 0.3 deg
+  double max_range_m = 8.0;
+  double min_range_m = 1.0;
+};
+
+class LidarSimulator {
+ public:
+  explicit LidarSimulator(const LidarPattern& pattern = {});
+
+  // One full scan from `sensor` (sensor frame -> world). The spans stay valid until the next
+  // call. Allocates nothing after construction.
+  void scan(const BoxWorld& world, const Pose3& sensor, std::span<const hal::LidarPoint>& points,
+            std::span<const hal::LidarPoint>& misses);
+  const LidarPattern& pattern() const { return pattern_; }
+
+ private:
+  LidarPattern pattern_;
+  std::vector<Vec3> directions_;  // unit vectors in the sensor frame, column-major
+  std::vector<hal::LidarPoint> points_, misses_;
+  std::vector<std::vector<int>> column_boxes_;  // per column: boxes that may be hit
+};
+
+// Distance along the ray (origin, unit direction) to the box, or a negative value if missed.
+double ray_box(const Vec3& origin, const Vec3& dir, const Box& box);
+
+}  // namespace colag::mock

@@ -1,0 +1,101 @@
+#include "colag/mock/lidar_simulator.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace colag::mock {
+
+double ray_box(const Vec3& o, const Vec3& d, const Box& b) {
+  const Vec3 lo(b.center.x() - b.half_size.x(), b.center.y() - b.half_size.y(), 0.0);
+  const Vec3 hi(b.center.x() + b.half_size.x(), b.center.y() + b.half_size.y(), b.height_m);
+  double t0 = 0.0, t1 = std::numeric_limits<double>::infinity();
+  for (int a = 0; a < 3; ++a) {
+    if (std::abs(d[a]) < 1e-12) {
+      if (o[a] < lo[a] || o[a] > hi[a]) return -1.0;
+      continue;
+    }
+    double ta = (lo[a] - o[a]) / d[a], tb = (hi[a] - o[a]) / d[a];
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+    if (t0 > t1) return -1.0;
+  }
+  return t0;
+}
+
+LidarSimulator::LidarSimulator(const LidarPattern& pattern) : pattern_(pattern) {
+  const std::size_t n =
+      static_cast<std::size_t>(pattern.beams) * static_cast<std::size_t>(pattern.columns);
+  directions_.reserve(n);
+  for (int c = 0; c < pattern.columns; ++c) {
+    const double az = 2.0 * M_PI * c / pattern.columns;
+    for (int b = 0; b < pattern.beams; ++b) {
+      const double el =
+          (pattern.lowest_elevation_deg + b * pattern.elevation_step_deg) * M_PI / 180.0;
+      directions_.emplace_back(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az),
+                               std::sin(el));
+    }
+  }
+  points_.reserve(n);
+  misses_.reserve(n);
+  column_boxes_.resize(static_cast<std::size_t>(pattern.columns));
+  for (auto& c : column_boxes_)
+    c.reserve(64);
+}
+
+void LidarSimulator::scan(const BoxWorld& world, const Pose3& sensor,
+                          std::span<const hal::LidarPoint>& points,
+                          std::span<const hal::LidarPoint>& misses) {
+  points_.clear();
+  misses_.clear();
+  const double range = pattern_.max_range_m;
+  const Mat3 R = sensor.q.toRotationMatrix();
+  const double yaw = yaw_of(sensor.q);
+  // Cull: boxes within range, entered in every column their azimuth span covers (in the
+  // sensor's heading frame; the sensor is assumed near level, as on a hovering UAV).
+  for (auto& c : column_boxes_)
+    c.clear();
+  const int cols = pattern_.columns;
+  for (std::size_t i = 0; i < world.boxes.size(); ++i) {
+    const Box& b = world.boxes[i];
+    const Vec2 rel = b.center - sensor.p.head<2>();
+    const double reach = b.half_size.norm();
+    const double dist = rel.norm();
+    if (dist - reach > range) continue;
+    int c0 = 0, c1 = cols - 1;
+    if (dist > reach + 1e-6) {
+      const double centre = std::atan2(rel.y(), rel.x()) - yaw;
+      const double half = std::asin(std::min(1.0, reach / dist)) + 2.0 * M_PI / cols;
+      c0 = static_cast<int>(std::floor((centre - half) / (2.0 * M_PI) * cols));
+      c1 = static_cast<int>(std::ceil((centre + half) / (2.0 * M_PI) * cols));
+    }
+    for (int c = c0; c <= c1 && c - c0 < cols; ++c) {
+      column_boxes_[static_cast<std::size_t>(((c % cols) + cols) % cols)].push_back(
+          static_cast<int>(i));
+    }
+  }
+  std::size_t k = 0;
+  for (int c = 0; c < cols; ++c) {
+    const auto& candidates = column_boxes_[static_cast<std::size_t>(c)];
+    for (int b = 0; b < pattern_.beams; ++b, ++k) {
+      const Vec3& local = directions_[k];
+      const Vec3 dir = R * local;
+      double t = std::numeric_limits<double>::infinity();
+      if (dir.z() < -1e-9) t = -sensor.p.z() / dir.z();  // the ground
+      for (const int i : candidates) {
+        const double tb = ray_box(sensor.p, dir, world.boxes[static_cast<std::size_t>(i)]);
+        if (tb >= 0.0 && tb < t) t = tb;
+      }
+      if (t < pattern_.min_range_m) continue;  // too close: the sensor reports nothing
+      const Vec3 end = local * std::min(t, range);
+      const hal::LidarPoint p{static_cast<float>(end.x()), static_cast<float>(end.y()),
+                              static_cast<float>(end.z())};
+      (t <= range ? points_ : misses_).push_back(p);
+    }
+  }
+  points = points_;
+  misses = misses_;
+}
+
+}  // namespace colag::mock

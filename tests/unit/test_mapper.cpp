@@ -1,0 +1,148 @@
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <set>
+#include <tuple>
+
+#include "colag/common/random.hpp"
+#include "colag/mock/lidar_simulator.hpp"
+#include "colag/uav/mapper.hpp"
+
+using namespace colag;
+using namespace colag::uav;
+
+namespace {
+
+std::set<std::tuple<int, int, int>> traversed(const GridGeometry3d& g, const Vec3& a,
+                                              const Vec3& b) {
+  std::set<std::tuple<int, int, int>> out;
+  any_voxel_on_segment(g, a, b, [&](VoxelIndex v) {
+    EXPECT_TRUE(out.insert({v.x, v.y, v.z}).second) << "voxel visited twice";
+    return false;
+  });
+  return out;
+}
+
+// Distance from the segment to the voxel's box (0 if they meet), by fine sampling.
+double segment_to_voxel(const GridGeometry3d& g, const Vec3& a, const Vec3& b, VoxelIndex v) {
+  const Vec3 lo = g.center_of(v) - Vec3::Constant(g.resolution() / 2),
+             hi = lo + Vec3::Constant(g.resolution());
+  double best = 1e9;
+  for (int i = 0; i <= 20000; ++i) {
+    const Vec3 p = a + (b - a) * (i / 20000.0);
+    best = std::min(best, (p - p.cwiseMax(lo).cwiseMin(hi)).norm());
+  }
+  return best;
+}
+
+}  // namespace
+
+TEST(VoxelTraversal, VisitsExactlyTheVoxelsASamplerFinds) {
+  const GridGeometry3d g(-2.0, -2.0, 0.0, 0.1, 40, 40, 20);
+  Rng rng(12);
+  for (int trial = 0; trial < 300; ++trial) {
+    const Vec3 a(rng.uniform(-1.9, 1.9), rng.uniform(-1.9, 1.9), rng.uniform(0.05, 1.95));
+    const Vec3 b(rng.uniform(-1.9, 1.9), rng.uniform(-1.9, 1.9), rng.uniform(0.05, 1.95));
+    const auto cells = traversed(g, a, b);
+    // Brute force: sample the segment every 0.1 mm.
+    std::set<std::tuple<int, int, int>> sampled;
+    const int n = static_cast<int>((b - a).norm() / 1e-4) + 2;
+    for (int i = 0; i <= n; ++i) {
+      const VoxelIndex v = g.voxel_of(a + (b - a) * (static_cast<double>(i) / n));
+      sampled.insert({v.x, v.y, v.z});
+    }
+    for (const auto& s : sampled)
+      EXPECT_TRUE(cells.count(s)) << "trial " << trial << ": missed a voxel";
+    // Anything more must be a voxel the segment only grazes (closer than the sampling step).
+    for (const auto& c : cells) {
+      if (sampled.count(c)) continue;
+      const auto [x, y, z] = c;
+      EXPECT_LT(segment_to_voxel(g, a, b, {x, y, z}), 1e-4) << "trial " << trial;
+    }
+    EXPECT_TRUE(cells.count({g.voxel_of(a).x, g.voxel_of(a).y, g.voxel_of(a).z}));
+    EXPECT_TRUE(cells.count({g.voxel_of(b).x, g.voxel_of(b).y, g.voxel_of(b).z}));
+  }
+}
+
+TEST(VoxelTraversal, StopsWhereTheSegmentLeavesTheGrid) {
+  const GridGeometry3d g(0.0, 0.0, 0.0, 0.1, 10, 10, 10);
+  int visited = 0;
+  any_voxel_on_segment(g, Vec3(0.05, 0.05, 0.55), Vec3(5.0, 0.05, 0.55), [&](VoxelIndex v) {
+    EXPECT_TRUE(g.contains(v));
+    ++visited;
+    return false;
+  });
+  EXPECT_EQ(visited, 10);
+}
+
+TEST(Mapper, ScanOfOneBoxOccupiedFacesFreeFrontUnknownShadow) {
+  mock::BoxWorld world;
+  world.boxes.push_back({Vec2(3.0, 0.0), Vec2(0.45, 0.45), 0.6});
+  auto lidar = std::make_unique<mock::LidarSimulator>();
+  auto map = std::make_unique<Mapper>();
+  const Pose3 sensor{Vec3(0.02, 0.03, 1.0), Quat::Identity()};
+  std::span<const hal::LidarPoint> points, misses;
+  lidar->scan(world, sensor, points, misses);
+  ASSERT_GT(points.size(), 10000u);
+  map->insert_scan(sensor, {TimePoint{}, 8.0F, points, misses});
+
+  // The face towards the sensor and the top are occupied.
+  EXPECT_EQ(map->state(Vec3(2.56, 0.0, 0.3)), VoxelState::kOccupied);
+  EXPECT_EQ(map->state(Vec3(2.56, 0.3, 0.1)), VoxelState::kOccupied);
+  int top = 0;  // the top face (z = 0.6, on a voxel boundary) is hit by two beam rings
+  for (double x = 2.6; x < 3.45; x += 0.1) {
+    for (double z : {0.55, 0.65})
+      top += map->state(Vec3(x, 0.0, z)) == VoxelState::kOccupied;
+  }
+  EXPECT_GE(top, 2);
+  // Free space between the sensor and the box.
+  EXPECT_EQ(map->state(Vec3(1.8, 0.0, 0.5)), VoxelState::kFree);
+  EXPECT_EQ(map->state(Vec3(2.3, 0.1, 0.25)), VoxelState::kFree);
+  // The ground is seen in front of the box, beyond the blind cone.
+  EXPECT_EQ(map->state(Vec3(2.3, 0.0, 0.05)), VoxelState::kOccupied);
+  // Behind the box, low down: the shadow. Inside the box: never seen either.
+  EXPECT_EQ(map->state(Vec3(4.5, 0.0, 0.2)), VoxelState::kUnknown);
+  EXPECT_EQ(map->state(Vec3(3.8, 0.0, 0.05)), VoxelState::kUnknown);
+  EXPECT_EQ(map->state(Vec3(3.0, 0.0, 0.3)), VoxelState::kUnknown);
+  // Right under the sensor: the beams never go steeper than -25.2 deg.
+  EXPECT_EQ(map->state(Vec3(0.0, 0.0, 0.05)), VoxelState::kUnknown);
+  // Next to the box, the shadow does not reach.
+  EXPECT_EQ(map->state(Vec3(4.5, 2.0, 0.2)), VoxelState::kFree);
+  EXPECT_EQ(map->counters().scans, 1u);
+  EXPECT_EQ(map->counters().rays, points.size() + misses.size());
+}
+
+TEST(Mapper, RepeatedMissesClearAnObstacleThatMovedAndHitsComeBack) {
+  auto map = std::make_unique<Mapper>();
+  const Pose3 sensor{Vec3(0.05, 0.05, 1.05), Quat::Identity()};
+  const hal::LidarPoint hit{2.0F, 0.0F, 0.0F};
+  const hal::LidarPoint through{4.0F, 0.0F, 0.0F};
+  map->insert_scan(sensor, {TimePoint{}, 8.0F, {&hit, 1}, {}});
+  EXPECT_EQ(map->state(Vec3(2.05, 0.05, 1.05)), VoxelState::kOccupied);
+  // One pass-through does not clear it (0.85 then 0.35: p = 0.75 < 0.8 => free, in fact).
+  int scans = 0;
+  while (map->state(Vec3(2.05, 0.05, 1.05)) == VoxelState::kOccupied && scans < 10) {
+    map->insert_scan(sensor, {TimePoint{}, 8.0F, {&through, 1}, {}});
+    ++scans;
+  }
+  EXPECT_EQ(scans, 1);
+  EXPECT_EQ(map->state(Vec3(4.05, 0.05, 1.05)), VoxelState::kOccupied);
+  // Clamping: after many misses one hit is not enough, two are (p_min 0.12: -100 units).
+  for (int i = 0; i < 20; ++i)
+    map->insert_scan(sensor, {TimePoint{}, 8.0F, {&through, 1}, {}});
+  map->insert_scan(sensor, {TimePoint{}, 8.0F, {&hit, 1}, {}});
+  EXPECT_EQ(map->state(Vec3(2.05, 0.05, 1.05)), VoxelState::kFree);
+  map->insert_scan(sensor, {TimePoint{}, 8.0F, {&hit, 1}, {}});
+  EXPECT_EQ(map->state(Vec3(2.05, 0.05, 1.05)), VoxelState::kOccupied);
+}
+
+TEST(Mapper, IgnoresScansFromOutsideTheGridAndNonFinitePoints) {
+  auto map = std::make_unique<Mapper>();
+  const hal::LidarPoint bad{std::numeric_limits<float>::quiet_NaN(), 0.0F, 0.0F};
+  const hal::LidarPoint ok{1.0F, 0.0F, 0.0F};
+  map->insert_scan({Vec3(0, 0, 50), Quat::Identity()}, {TimePoint{}, 8.0F, {&ok, 1}, {}});
+  EXPECT_EQ(map->counters().rays_outside, 1u);
+  map->insert_scan({Vec3(0, 0, 1), Quat::Identity()}, {TimePoint{}, 8.0F, {&bad, 1}, {}});
+  EXPECT_EQ(map->counters().rays_outside, 2u);
+  EXPECT_EQ(map->counters().voxel_updates, 0u);
+}

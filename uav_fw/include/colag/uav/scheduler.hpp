@@ -1,0 +1,116 @@
+#pragma once
+// The UAV's support scheduling (paper Sec. III-D) as an open vehicle-routing problem with time
+// windows for one vehicle: node 0 is the UAV, nodes 1..n the live support requests. A route
+// visits every stop once; arriving before `ready` means waiting, after `due` means lateness.
+// Objective, lexicographic: total lateness (sum of max(0, arrival - due)), then travel time.
+// So when some order meets every deadline, the shortest such order wins (the paper's VRPTW);
+// when none does, the order that makes the UGVs wait least in total (better than the paper's
+// "raise v_max until feasible", which says nothing about which UGV waits).
+// Solvers, both with static memory and bounded time:
+// - exact, n <= kExactMaxStops: dynamic programming over subsets with Pareto labels
+//   (lateness, arrival, travel) per (visited set, last stop); a first pass with hard deadlines
+//   prunes every late state and usually settles it;
+// - heuristic, any n <= kMaxStops: deadline-ordered feasible insertion with O(1) forward
+//   time-slack checks (Savelsbergh), then local search (Or-opt relocation of 1-3 stops with
+//   the same O(1) checks, 2-opt reversal) iterated from seeded perturbations within a fixed
+//   work budget.
+// Ablations: kNoTimeWindows (plain open TSP: deadlines ignored while solving), kNoScheduling
+// (serve the smallest deadline first).
+#include <array>
+#include <cstdint>
+#include <span>
+
+#include "colag/common/limits.hpp"
+#include "colag/common/static_vector.hpp"
+
+namespace colag::uav {
+
+inline constexpr std::size_t kMaxStops = limits::kMaxSupportRequests;
+inline constexpr int kExactMaxStops = 12;
+
+struct ScheduleProblem {
+  int n = 0;                                                              // stops 1..n
+  std::array<std::array<double, kMaxStops + 1>, kMaxStops + 1> travel{};  // seconds, i -> j
+  std::array<double, kMaxStops + 1> ready{};
+  std::array<double, kMaxStops + 1> due{};
+  bool closed = false;  // the route ends back at node 0 (TSPTW benchmark instances)
+};
+
+enum class ScheduleMode : std::uint8_t { kTimeWindows, kNoTimeWindows, kNoScheduling };
+
+struct RouteCost {
+  double lateness_s = 0.0;
+  double travel_s = 0.0;
+  double max_lateness_s = 0.0;
+  bool feasible = true;
+};
+
+struct ScheduleResult {
+  StaticVector<std::uint8_t, kMaxStops> order;  // stops in visiting order
+  std::array<double, kMaxStops + 1> arrival{};  // service start per node
+  RouteCost cost;
+  bool exact = false;  // proven optimal for the objective
+};
+
+// Evaluates `order` (stop numbers 1..n); fills arrivals if given.
+RouteCost evaluate(const ScheduleProblem& p, std::span<const std::uint8_t> order,
+                   double* arrival = nullptr);
+
+struct SchedulerConfig {
+  ScheduleMode mode = ScheduleMode::kTimeWindows;
+  int exact_max_stops = kExactMaxStops;
+  // Heuristic effort: route evaluations (one unit per stop looked at) across all restarts.
+  // Bounds the solve time for any n: about 1 ms on a desktop core.
+  std::uint64_t work_budget = 200'000;
+  int stagnation_per_stop = 2;  // iterated search ends after 2n perturbations without progress
+};
+
+class Scheduler {
+ public:
+  explicit Scheduler(const SchedulerConfig& config = {}) : config_(config) {}
+  // Returns the best order found; `result.exact` tells whether it is proven optimal.
+  const ScheduleResult& solve(const ScheduleProblem& problem);
+  const SchedulerConfig& config() const { return config_; }
+
+ private:
+  struct Label {
+    double lateness, arrival, travel;
+    std::uint32_t parent;  // index in pool_, kNone for the first stop
+    std::uint8_t node;
+  };
+  static constexpr std::uint32_t kNone = 0xFFFFFFFFu;
+  static constexpr std::size_t kStates = (std::size_t{1} << kExactMaxStops) * kExactMaxStops;
+  static constexpr std::size_t kPool = std::size_t{1} << 18;
+  static constexpr std::size_t kFront = 32;
+
+  // Exact DP. `hard` drops every late label; `bound` (optional) drops every label that cannot
+  // beat it. Returns true with the optimum in `out` (`out.exact` false if a front overflowed),
+  // false when nothing qualifies: then `*proven` says whether that is proven (bound optimal,
+  // or no order meets the hard deadlines) or the label pool ran out.
+  bool solve_exact(const ScheduleProblem& p, bool hard, const RouteCost* bound, ScheduleResult& out,
+                   bool* proven = nullptr);
+  // `iterate`: spend the work budget on iterated local search (when its answer is final);
+  // otherwise one construction + descent (an incumbent for the exact solver to prune with).
+  void solve_heuristic(const ScheduleProblem& p, bool iterate, ScheduleResult& out);
+  void insertion(const ScheduleProblem& p, std::span<const std::uint8_t> by_deadline);
+  bool or_opt(const ScheduleProblem& p);   // applies one improving move, if any
+  bool two_opt(const ScheduleProblem& p);  // applies one improving move, if any
+  void local_search(const ScheduleProblem& p);
+  RouteCost cost(const ScheduleProblem& p, std::span<const std::uint8_t> order);  // counts work
+  bool better(const RouteCost& a, const RouteCost& b) const;
+  void finish(const ScheduleProblem& p, std::span<const std::uint8_t> order,
+              ScheduleResult& out) const;
+
+  SchedulerConfig config_;
+  ScheduleProblem working_;  // the problem as solved (deadlines relaxed for kNoTimeWindows)
+  ScheduleResult result_;
+  std::array<Label, kPool> pool_;
+  std::array<std::uint32_t, kStates> state_begin_;
+  std::array<std::uint8_t, kStates> state_count_;
+  // heuristic scratch
+  StaticVector<std::uint8_t, kMaxStops> route_, candidate_, best_;
+  std::uint64_t work_ = 0;
+  std::array<double, kMaxStops + 2> start_{}, slack_{};
+};
+
+}  // namespace colag::uav

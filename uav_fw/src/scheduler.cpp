@@ -1,0 +1,470 @@
+#include "colag/uav/scheduler.hpp"
+
+#include "colag/common/random.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace colag::uav {
+
+namespace {
+constexpr double kEps = 1e-9;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+}  // namespace
+
+RouteCost evaluate(const ScheduleProblem& p, std::span<const std::uint8_t> order, double* arrival) {
+  RouteCost c;
+  double t = 0.0;
+  std::uint8_t prev = 0;
+  const auto late = [&](double start, double due) {
+    const double l = std::max(0.0, start - due);
+    c.lateness_s += l;
+    c.max_lateness_s = std::max(c.max_lateness_s, l);
+  };
+  for (const std::uint8_t k : order) {
+    c.travel_s += p.travel[prev][k];
+    t = std::max(p.ready[k], t + p.travel[prev][k]);
+    late(t, p.due[k]);
+    if (arrival != nullptr) arrival[k] = t;
+    prev = k;
+  }
+  if (p.closed) {
+    c.travel_s += p.travel[prev][0];
+    late(t + p.travel[prev][0], p.due[0]);
+  }
+  c.feasible = c.lateness_s <= kEps;
+  return c;
+}
+
+RouteCost Scheduler::cost(const ScheduleProblem& p, std::span<const std::uint8_t> order) {
+  work_ += order.size() + 1;
+  return evaluate(p, order);
+}
+
+bool Scheduler::better(const RouteCost& a, const RouteCost& b) const {
+  if (std::abs(a.lateness_s - b.lateness_s) > kEps) return a.lateness_s < b.lateness_s;
+  return a.travel_s < b.travel_s - kEps;
+}
+
+void Scheduler::finish(const ScheduleProblem& p, std::span<const std::uint8_t> order,
+                       ScheduleResult& out) const {
+  out.order.clear();
+  for (const std::uint8_t k : order)
+    (void)out.order.push_back(k);
+  out.cost = evaluate(p, order, out.arrival.data());
+}
+
+const ScheduleResult& Scheduler::solve(const ScheduleProblem& problem) {
+  result_ = ScheduleResult{};
+  const int n = std::clamp(problem.n, 0, static_cast<int>(kMaxStops));
+  working_ = problem;
+  working_.n = n;
+  StaticVector<std::uint8_t, kMaxStops> by_deadline;
+  for (int k = 1; k <= n; ++k)
+    (void)by_deadline.push_back(static_cast<std::uint8_t>(k));
+  std::stable_sort(by_deadline.begin(), by_deadline.end(),
+                   [&](std::uint8_t a, std::uint8_t b) { return problem.due[a] < problem.due[b]; });
+  if (n == 0 || config_.mode == ScheduleMode::kNoScheduling) {
+    finish(problem, {by_deadline.begin(), by_deadline.end()}, result_);
+    return result_;
+  }
+  if (config_.mode == ScheduleMode::kNoTimeWindows) {
+    for (int k = 0; k <= n; ++k)
+      working_.due[k] = kInf;
+  }
+  const bool small = n <= std::min(config_.exact_max_stops, kExactMaxStops);
+  if (!small || !solve_exact(working_, true, nullptr, result_)) {
+    // No order meets every deadline (or too many stops for the exact solver): the heuristic
+    // gives an incumbent; the exact solver, pruning against it, either beats it or proves it.
+    solve_heuristic(working_, !small, result_);
+    if (small) {
+      ScheduleResult better_one;
+      const RouteCost bound = result_.cost;
+      bool proven = false;
+      if (solve_exact(working_, false, &bound, better_one, &proven)) {
+        result_ = better_one;
+      } else {
+        result_.exact = proven;
+      }
+    }
+  }
+  // Report against the real deadlines (they differ from the working ones for kNoTimeWindows).
+  StaticVector<std::uint8_t, kMaxStops> order = result_.order;
+  const bool exact = result_.exact;
+  finish(problem, {order.begin(), order.end()}, result_);
+  result_.exact = exact;
+  return result_;
+}
+
+// --- exact -------------------------------------------------------------------------------------
+
+bool Scheduler::solve_exact(const ScheduleProblem& p, bool hard, const RouteCost* bound,
+                            ScheduleResult& out, bool* proven) {
+  const int n = p.n;
+  const std::uint32_t full = (1U << n) - 1U;
+  std::size_t used = 0;
+  bool truncated = false;
+  if (proven != nullptr) *proven = false;
+  Label front[kFront];
+  // Lower bounds for pruning against `bound`: stop j is reached from some other stop, so no
+  // sooner than the quickest leg into it, and that leg is still to be travelled.
+  std::array<double, kMaxStops + 1> min_in{};
+  for (int j = 1; j <= n; ++j) {
+    min_in[j] = n == 1 ? p.travel[0][j] : kInf;
+    for (int i = 1; i <= n; ++i) {
+      if (i != j) min_in[j] = std::min(min_in[j], p.travel[i][j]);
+    }
+  }
+  const auto hopeless = [&](std::uint32_t mask, const Label& c) {
+    if (bound == nullptr) return false;
+    double late = c.lateness, travel = c.travel;
+    for (int j = 1; j <= n; ++j) {
+      if (mask & (1U << (j - 1))) continue;
+      late += std::max(0.0, std::max(p.ready[j], c.arrival + min_in[j]) - p.due[j]);
+      travel += min_in[j];
+    }
+    if (late > bound->lateness_s + kEps) return true;
+    return late >= bound->lateness_s - kEps && travel >= bound->travel_s - kEps;
+  };
+  for (std::uint32_t mask = 1; mask <= full; ++mask) {
+    for (int last = 0; last < n; ++last) {
+      if ((mask & (1U << last)) == 0) continue;
+      const auto node = static_cast<std::uint8_t>(last + 1);
+      std::size_t count = 0;
+      const auto offer = [&](const Label& c) {
+        if ((hard && c.lateness > kEps) || hopeless(mask, c)) return;
+        for (std::size_t i = 0; i < count; ++i) {
+          const Label& e = front[i];
+          if (e.lateness <= c.lateness + kEps && e.arrival <= c.arrival + kEps &&
+              e.travel <= c.travel + kEps)
+            return;
+        }
+        std::size_t keep = 0;
+        for (std::size_t i = 0; i < count; ++i) {
+          const Label& e = front[i];
+          const bool dominated = c.lateness <= e.lateness + kEps && c.arrival <= e.arrival + kEps &&
+                                 c.travel <= e.travel + kEps;
+          if (!dominated) front[keep++] = e;
+        }
+        count = keep;
+        if (count == kFront) {
+          truncated = true;  // keep the lexicographically better of the candidate and the worst
+          std::size_t worst = 0;
+          for (std::size_t i = 1; i < count; ++i) {
+            if (front[i].lateness > front[worst].lateness ||
+                (front[i].lateness == front[worst].lateness &&
+                 front[i].travel > front[worst].travel)) {
+              worst = i;
+            }
+          }
+          if (c.lateness < front[worst].lateness ||
+              (c.lateness == front[worst].lateness && c.travel < front[worst].travel)) {
+            front[worst] = c;
+          }
+          return;
+        }
+        front[count++] = c;
+      };
+      const std::uint32_t prev_mask = mask ^ (1U << last);
+      if (prev_mask == 0) {
+        const double a = std::max(p.ready[node], p.travel[0][node]);
+        offer({std::max(0.0, a - p.due[node]), a, p.travel[0][node], kNone, node});
+      } else {
+        for (int prev = 0; prev < n; ++prev) {
+          if ((prev_mask & (1U << prev)) == 0) continue;
+          const std::size_t ps =
+              static_cast<std::size_t>(prev_mask) * kExactMaxStops + static_cast<std::size_t>(prev);
+          const double leg = p.travel[prev + 1][node];
+          for (std::uint32_t i = state_begin_[ps]; i < state_begin_[ps] + state_count_[ps]; ++i) {
+            const Label& l = pool_[i];
+            const double a = std::max(p.ready[node], l.arrival + leg);
+            offer({l.lateness + std::max(0.0, a - p.due[node]), a, l.travel + leg, i, node});
+          }
+        }
+      }
+      if (used + count > kPool) return false;  // out of label memory: not proven
+      const std::size_t st =
+          static_cast<std::size_t>(mask) * kExactMaxStops + static_cast<std::size_t>(last);
+      state_begin_[st] = static_cast<std::uint32_t>(used);
+      state_count_[st] = static_cast<std::uint8_t>(count);
+      std::copy_n(front, count, pool_.begin() + static_cast<std::ptrdiff_t>(used));
+      used += count;
+    }
+  }
+  // Best complete route (plus the way home for closed routes).
+  std::uint32_t best = kNone;
+  RouteCost best_cost{kInf, kInf, 0.0, false};
+  for (int last = 0; last < n; ++last) {
+    const std::size_t st =
+        static_cast<std::size_t>(full) * kExactMaxStops + static_cast<std::size_t>(last);
+    for (std::uint32_t i = state_begin_[st]; i < state_begin_[st] + state_count_[st]; ++i) {
+      const Label& l = pool_[i];
+      RouteCost c{l.lateness, l.travel, 0.0, true};
+      if (p.closed) {
+        const double home = p.travel[l.node][0];
+        const double late = std::max(0.0, l.arrival + home - p.due[0]);
+        if (hard && late > kEps) continue;
+        c.lateness_s += late;
+        c.travel_s += home;
+      }
+      if (best == kNone || better(c, best_cost)) {
+        best = i;
+        best_cost = c;
+      }
+    }
+  }
+  // Nothing found: with hard deadlines no order meets them all; against a bound, nothing beats
+  // it, which proves the bound optimal unless a front had to be cut.
+  if (proven != nullptr) *proven = best == kNone && !truncated;
+  if (best == kNone) return false;
+  StaticVector<std::uint8_t, kMaxStops> reversed;
+  for (std::uint32_t i = best; i != kNone; i = pool_[i].parent)
+    (void)reversed.push_back(pool_[i].node);
+  StaticVector<std::uint8_t, kMaxStops> order;
+  for (std::size_t i = reversed.size(); i-- > 0;)
+    (void)order.push_back(reversed[i]);
+  finish(p, {order.begin(), order.end()}, out);
+  out.exact = !truncated;
+  return true;
+}
+
+// --- heuristic -----------------------------------------------------------------------------------
+
+namespace {
+
+// Service start of every position of `route` (position 0 = node 0 at time 0) and the forward
+// time slack: how much the start at a position may be delayed without making any later stop
+// late. Returns false if the route is already late somewhere.
+bool timing(const ScheduleProblem& p, std::span<const std::uint8_t> route, double* start,
+            double* slack) {
+  const std::size_t m = route.size();
+  const auto node = [&](std::size_t pos) { return pos == 0 ? std::uint8_t{0} : route[pos - 1]; };
+  start[0] = 0.0;
+  for (std::size_t k = 1; k <= m; ++k)
+    start[k] = std::max(p.ready[node(k)], start[k - 1] + p.travel[node(k - 1)][node(k)]);
+  double f = p.closed ? p.due[0] - (start[m] + p.travel[node(m)][0]) : kInf;
+  slack[m + 1] = kInf;
+  for (std::size_t k = m; k >= 1; --k) {
+    f = std::min(p.due[node(k)] - start[k], f);
+    slack[k] = f;
+    if (f < -kEps) return false;
+    const double wait = start[k] - (start[k - 1] + p.travel[node(k - 1)][node(k)]);
+    f += wait;  // delay at k-1 is first absorbed by the waiting at k
+  }
+  return true;
+}
+
+}  // namespace
+
+void Scheduler::insertion(const ScheduleProblem& p, std::span<const std::uint8_t> by_deadline) {
+  route_.clear();
+  for (const std::uint8_t u : by_deadline) {
+    const std::size_t m = route_.size();
+    const bool feasible = timing(p, {route_.begin(), route_.end()}, start_.data(), slack_.data());
+    std::size_t best_pos = m;
+    double best_delta = kInf;
+    if (feasible) {
+      for (std::size_t q = 0; q <= m; ++q) {  // insert after position q
+        const std::uint8_t a = q == 0 ? 0 : route_[q - 1];
+        const double s = std::max(p.ready[u], start_[q] + p.travel[a][u]);
+        if (s > p.due[u] + kEps) continue;
+        double delta = p.travel[a][u];
+        if (q < m) {
+          const std::uint8_t b = route_[q];
+          const double push = std::max(p.ready[b], s + p.travel[u][b]) - start_[q + 1];
+          if (push > slack_[q + 1] + kEps) continue;
+          delta += p.travel[u][b] - p.travel[a][b];
+        } else if (p.closed) {
+          if (s + p.travel[u][0] > p.due[0] + kEps) continue;
+          delta += p.travel[u][0] - p.travel[a][0];
+        }
+        if (delta < best_delta) {
+          best_delta = delta;
+          best_pos = q;
+        }
+      }
+    }
+    if (best_delta == kInf) {  // no feasible place: the one that adds the least lateness
+      RouteCost best_cost{kInf, kInf, 0.0, false};
+      for (std::size_t q = 0; q <= m; ++q) {
+        candidate_ = route_;
+        (void)candidate_.push_back(u);
+        std::rotate(candidate_.begin() + static_cast<std::ptrdiff_t>(q), candidate_.end() - 1,
+                    candidate_.end());
+        const RouteCost c = cost(p, {candidate_.begin(), candidate_.end()});
+        if (best_cost.lateness_s == kInf || better(c, best_cost)) {
+          best_cost = c;
+          best_pos = q;
+        }
+      }
+    }
+    (void)route_.push_back(u);
+    std::rotate(route_.begin() + static_cast<std::ptrdiff_t>(best_pos), route_.end() - 1,
+                route_.end());
+  }
+}
+
+// Or-opt: move a segment of 1-3 consecutive stops elsewhere; applies the first
+// move that improves (lateness, travel) and returns true, false at a local optimum.
+bool Scheduler::or_opt(const ScheduleProblem& p) {
+  const std::size_t m = route_.size();
+  const RouteCost current = cost(p, {route_.begin(), route_.end()});
+  for (std::size_t len = 1; len <= 3 && len < m; ++len) {
+    for (std::size_t from = 0; from + len <= m; ++from) {
+      // The route without the segment.
+      candidate_.clear();
+      for (std::size_t i = 0; i < m; ++i) {
+        if (i < from || i >= from + len) (void)candidate_.push_back(route_[i]);
+      }
+      const std::span<const std::uint8_t> seg(route_.begin() + static_cast<std::ptrdiff_t>(from),
+                                              len);
+      const std::size_t r = candidate_.size();
+      work_ += r + 1;
+      const bool fast = current.feasible && timing(p, {candidate_.begin(), candidate_.end()},
+                                                   start_.data(), slack_.data());
+      const std::uint8_t before = from == 0 ? 0 : route_[from - 1];
+      const std::uint8_t after = from + len < m ? route_[from + len] : 0;
+      double internal = 0.0;
+      for (std::size_t i = 1; i < len; ++i)
+        internal += p.travel[seg[i - 1]][seg[i]];
+      double removal = -(p.travel[before][seg[0]] + internal);
+      if (from + len < m) {
+        removal += p.travel[before][after] - p.travel[seg[len - 1]][after];
+      } else if (p.closed) {
+        removal += p.travel[before][0] - p.travel[seg[len - 1]][0];
+      }
+      for (std::size_t q = 0; q <= r; ++q) {
+        if (q == from) continue;  // its own place
+        ++work_;
+        if (fast) {
+          // O(1): start times through the segment, then the push on the rest of the route.
+          std::uint8_t a = q == 0 ? 0 : candidate_[q - 1];
+          double s = start_[q];
+          double delta = removal + internal;
+          bool ok = true;
+          for (const std::uint8_t u : seg) {
+            s = std::max(p.ready[u], s + p.travel[a][u]);
+            ok = ok && s <= p.due[u] + kEps;
+            a = u;
+          }
+          if (!ok) continue;
+          delta += p.travel[q == 0 ? 0 : candidate_[q - 1]][seg[0]];
+          if (q < r) {
+            const std::uint8_t b = candidate_[q];
+            if (std::max(p.ready[b], s + p.travel[a][b]) - start_[q + 1] > slack_[q + 1] + kEps)
+              continue;
+            delta += p.travel[a][b] - p.travel[q == 0 ? 0 : candidate_[q - 1]][b];
+          } else if (p.closed) {
+            if (s + p.travel[a][0] > p.due[0] + kEps) continue;
+            delta += p.travel[a][0] - p.travel[q == 0 ? 0 : candidate_[q - 1]][0];
+          }
+          if (delta >= -1e-7) continue;
+        }
+        StaticVector<std::uint8_t, kMaxStops> moved;
+        for (std::size_t i = 0; i <= r; ++i) {
+          if (i == q) {
+            for (const std::uint8_t u : seg)
+              (void)moved.push_back(u);
+          }
+          if (i < r) (void)moved.push_back(candidate_[i]);
+        }
+        if (better(cost(p, {moved.begin(), moved.end()}), current)) {
+          route_ = moved;
+          return true;
+        }
+      }
+    }
+  }
+  return false;
+}
+
+// 2-opt: reverse a stretch of the route; applies the first improving reversal.
+bool Scheduler::two_opt(const ScheduleProblem& p) {
+  const std::size_t m = route_.size();
+  const RouteCost current = cost(p, {route_.begin(), route_.end()});
+  for (std::size_t i = 0; i + 1 < m; ++i) {
+    for (std::size_t j = i + 1; j < m; ++j) {
+      candidate_ = route_;
+      std::reverse(candidate_.begin() + static_cast<std::ptrdiff_t>(i),
+                   candidate_.begin() + static_cast<std::ptrdiff_t>(j) + 1);
+      if (better(cost(p, {candidate_.begin(), candidate_.end()}), current)) {
+        route_ = candidate_;
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+void Scheduler::local_search(const ScheduleProblem& p) {
+  while (work_ < config_.work_budget && (or_opt(p) || two_opt(p))) {
+  }
+}
+
+void Scheduler::solve_heuristic(const ScheduleProblem& p, bool iterate, ScheduleResult& out) {
+  work_ = 0;
+  StaticVector<std::uint8_t, kMaxStops> order;
+  for (int k = 1; k <= p.n; ++k)
+    (void)order.push_back(static_cast<std::uint8_t>(k));
+  const auto keep_if_better = [&](RouteCost& best_cost) {
+    const RouteCost c = cost(p, {route_.begin(), route_.end()});
+    if (best_.empty() || better(c, best_cost)) {
+      best_ = route_;
+      best_cost = c;
+      return true;
+    }
+    return false;
+  };
+  RouteCost best_cost{};
+  best_.clear();
+  // Constructions: insertion by deadline, and by distance from the UAV.
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::uint8_t a, std::uint8_t b) { return p.due[a] < p.due[b]; });
+  insertion(p, {order.begin(), order.end()});
+  local_search(p);
+  keep_if_better(best_cost);
+  if (!iterate) {
+    finish(p, {best_.begin(), best_.end()}, out);
+    out.exact = false;
+    return;
+  }
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::uint8_t a, std::uint8_t b) { return p.travel[0][a] < p.travel[0][b]; });
+  insertion(p, {order.begin(), order.end()});
+  local_search(p);
+  keep_if_better(best_cost);
+  // Iterated local search: perturb the best route (move a random stretch to a random place,
+  // reverse another), descend again, keep improvements. Seeded: the same problem, the same
+  // answer.
+  Rng rng(0x5eedULL + static_cast<std::uint64_t>(p.n));
+  const std::size_t m = best_.size();
+  const int patience = config_.stagnation_per_stop * p.n;
+  for (int idle = 0; m >= 4 && work_ < config_.work_budget && idle < patience; ++idle) {
+    route_ = best_;
+    const std::size_t len = 1 + rng.below(std::min<std::size_t>(3, m - 1));
+    const std::size_t from = rng.below(m - len + 1);
+    candidate_.clear();
+    for (std::size_t i = 0; i < m; ++i) {
+      if (i < from || i >= from + len) (void)candidate_.push_back(route_[i]);
+    }
+    const std::size_t to = rng.below(candidate_.size() + 1);
+    route_.clear();
+    for (std::size_t i = 0; i <= candidate_.size(); ++i) {
+      if (i == to) {
+        for (std::size_t k = from; k < from + len; ++k)
+          (void)route_.push_back(best_[k]);
+      }
+      if (i < candidate_.size()) (void)route_.push_back(candidate_[i]);
+    }
+    const std::size_t a = rng.below(m - 1), b = a + 1 + rng.below(m - a - 1);
+    std::reverse(route_.begin() + static_cast<std::ptrdiff_t>(a),
+                 route_.begin() + static_cast<std::ptrdiff_t>(b) + 1);
+    local_search(p);
+    if (keep_if_better(best_cost)) idle = -1;
+  }
+  finish(p, {best_.begin(), best_.end()}, out);
+  out.exact = false;
+}
+
+}  // namespace colag::uav
