@@ -21,15 +21,23 @@ void encode_packed(const PatchCells& in, std::size_t n, std::uint8_t* data) {
   }
 }
 
+// The symbol coded for cell i: its state, or (row delta) its state XOR the one below.
+unsigned symbol(const PatchCells& in, std::size_t i, bool row_delta) {
+  const auto w = static_cast<std::size_t>(in.width);
+  const unsigned below = row_delta && i >= w ? static_cast<unsigned>(in.cells[i - w]) : 0U;
+  return static_cast<unsigned>(in.cells[i]) ^ below;
+}
+
 // Returns the encoded size, or 0 if it would exceed `cap` bytes.
-std::size_t encode_rle(const PatchCells& in, std::size_t n, std::uint8_t* data, std::size_t cap) {
+std::size_t encode_rle(const PatchCells& in, std::size_t n, bool row_delta, std::uint8_t* data,
+                       std::size_t cap) {
   std::size_t len = 0;
   for (std::size_t i = 0; i < n;) {
+    const unsigned sym = symbol(in, i, row_delta);
     std::size_t j = i + 1;
-    while (j < n && in.cells[j] == in.cells[i])
+    while (j < n && symbol(in, j, row_delta) == sym)
       ++j;
-    std::uint32_t v =
-        static_cast<std::uint32_t>(in.cells[i]) | static_cast<std::uint32_t>((j - i - 1) << 2);
+    std::uint32_t v = sym | static_cast<std::uint32_t>((j - i - 1) << 2);
     do {
       if (len == cap) return 0;
       const auto byte = static_cast<std::uint8_t>(v & 0x7F);
@@ -55,7 +63,7 @@ Status decode_packed(const msg::MapPatch& in, std::size_t n, PatchCells& out) {
   return Status::ok();
 }
 
-Status decode_rle(const msg::MapPatch& in, std::size_t n, PatchCells& out) {
+Status decode_rle(const msg::MapPatch& in, std::size_t n, bool row_delta, PatchCells& out) {
   std::size_t pos = 0, cell = 0;
   while (pos < in.data_bytes) {
     std::uint32_t v = 0;
@@ -68,12 +76,16 @@ Status decode_rle(const msg::MapPatch& in, std::size_t n, PatchCells& out) {
       shift += 7;
       if ((b & 0x80) == 0) break;
     }
-    const unsigned state = v & 3U;
+    const unsigned sym = v & 3U;
     const std::size_t run = (v >> 2) + 1;
-    if (state > 2) return {Errc::kCorrupt, "run-length patch: invalid cell value"};
     if (run > n - cell) return {Errc::kCorrupt, "run-length patch: more cells than the patch"};
-    std::fill_n(out.cells.begin() + static_cast<std::ptrdiff_t>(cell), run,
-                static_cast<CellState>(state));
+    const auto w = static_cast<std::size_t>(in.width_cells);
+    for (std::size_t k = cell; k < cell + run; ++k) {
+      const unsigned state =
+          sym ^ (row_delta && k >= w ? static_cast<unsigned>(out.cells[k - w]) : 0U);
+      if (state > 2) return {Errc::kCorrupt, "run-length patch: invalid cell value"};
+      out.cells[k] = static_cast<CellState>(state);
+    }
     cell += run;
   }
   if (cell != n) return {Errc::kCorrupt, "run-length patch: fewer cells than the patch"};
@@ -91,11 +103,17 @@ Status encode_patch(const PatchCells& in, msg::MapPatch& out) {
   }
   out.width_cells = static_cast<std::uint16_t>(in.width);
   out.height_cells = static_cast<std::uint16_t>(in.height);
+  // The smallest of the three; run-length forms only when strictly smaller than packed.
   const std::size_t packed = packed_bytes(n);
-  const std::size_t rle = encode_rle(in, n, out.data, packed - 1);  // only if strictly smaller
+  const std::size_t rows = encode_rle(in, n, true, out.data, packed - 1);
+  const std::size_t rle = encode_rle(in, n, false, out.data, rows > 0 ? rows - 1 : packed - 1);
   if (rle > 0) {
     out.encoding = msg::MapPatchEncoding::kRunLength;
     out.data_bytes = static_cast<std::uint16_t>(rle);
+  } else if (rows > 0) {
+    (void)encode_rle(in, n, true, out.data, rows);  // overwritten by the attempt above
+    out.encoding = msg::MapPatchEncoding::kRowDelta;
+    out.data_bytes = static_cast<std::uint16_t>(rows);
   } else {
     encode_packed(in, n, out.data);
     out.encoding = msg::MapPatchEncoding::kPacked2Bit;
@@ -121,7 +139,10 @@ Status decode_patch(const msg::MapPatch& in, PatchCells& out) {
       s = decode_packed(in, n, scratch);
       break;
     case msg::MapPatchEncoding::kRunLength:
-      s = decode_rle(in, n, scratch);
+      s = decode_rle(in, n, false, scratch);
+      break;
+    case msg::MapPatchEncoding::kRowDelta:
+      s = decode_rle(in, n, true, scratch);
       break;
   }
   if (!s) return s;

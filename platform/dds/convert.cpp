@@ -87,7 +87,7 @@ Status from_idl(const colag_idl_MapPatch& in, msg::MapPatch& out) {
   if (in.data._length > limits::kMaxPatchBytes || (in.data._length > 0 && !in.data._buffer)) {
     return {Errc::kInvalidArgument, "map patch payload larger than its bound"};
   }
-  if (in.encoding > static_cast<std::uint8_t>(msg::MapPatchEncoding::kRunLength)) {
+  if (in.encoding > static_cast<std::uint8_t>(msg::MapPatchEncoding::kRowDelta)) {
     return {Errc::kInvalidArgument, "unknown map patch encoding"};
   }
   out.stamp = from_ns(in.stamp_ns);

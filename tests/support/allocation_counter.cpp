@@ -2,6 +2,7 @@
 
 #include <cerrno>
 #include <cstddef>
+#include <cstdlib>
 
 // Two hooks, chosen at build time (test code, not task code):
 // - sanitizer builds: the allocator is ASan's, which offers malloc hooks;
@@ -13,8 +14,14 @@ namespace {
 __attribute__((tls_model("initial-exec"))) thread_local bool t_armed = false;
 __attribute__((tls_model("initial-exec"))) thread_local std::uint64_t t_count = 0;
 
+// Set COLAG_ALLOC_ABORT=1 to abort at the first counted allocation (then read the backtrace
+// in a debugger: that is the allocation to remove).
+bool g_abort_on_allocation = false;
+
 inline void note_allocation() {
-  if (t_armed) ++t_count;
+  if (!t_armed) return;
+  ++t_count;
+  if (g_abort_on_allocation) __builtin_trap();
 }
 }  // namespace
 
@@ -75,6 +82,11 @@ int posix_memalign(void** out, std::size_t alignment, std::size_t size) {
 namespace colag::test {
 
 AllocationCounter::AllocationCounter() {
+  static const bool abort_requested = [] {
+    const char* v = std::getenv("COLAG_ALLOC_ABORT");
+    return v != nullptr && v[0] == '1';
+  }();
+  g_abort_on_allocation = abort_requested;
   t_count = 0;
   t_armed = true;
 }

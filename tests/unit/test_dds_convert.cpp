@@ -70,7 +70,7 @@ TEST(DdsConvert, RoundTripEveryTypeOnRandomSamples) {
     mp.origin_y_m = f.real();
     mp.width_cells = f.u16();
     mp.height_cells = f.u16();
-    mp.encoding = static_cast<msg::MapPatchEncoding>(f.below(2));
+    mp.encoding = static_cast<msg::MapPatchEncoding>(f.below(3));
     mp.data_bytes = static_cast<std::uint16_t>(f.below(limits::kMaxPatchBytes + 1));
     for (std::size_t i = 0; i < mp.data_bytes; ++i)
       mp.data[i] = static_cast<std::uint8_t>(f.u16());

@@ -37,20 +37,41 @@ msg::MapPatch encoded(const PatchCells& p) {
 
 TEST(MapPatchCodec, RoundTripsRandomPatchesAndPicksTheSmallerEncoding) {
   Rng rng(5);
-  int rle = 0, packed = 0;
+  int rle = 0, packed = 0, rows = 0;
   for (int trial = 0; trial < 2000; ++trial) {
     const int w = 1 + static_cast<int>(rng.below(64)), h = 1 + static_cast<int>(rng.below(64));
     const double mean_run = trial % 2 ? 1.5 : 80.0;  // noisy or map-like
     const PatchCells p = random_patch(rng, w, h, mean_run);
     const msg::MapPatch m = encoded(p);
     EXPECT_LE(m.data_bytes, (w * h + 3) / 4);
-    (m.encoding == msg::MapPatchEncoding::kRunLength ? rle : packed)++;
+    (m.encoding == msg::MapPatchEncoding::kRunLength  ? rle
+     : m.encoding == msg::MapPatchEncoding::kRowDelta ? rows
+                                                      : packed)++;
     PatchCells out;
     ASSERT_TRUE(decode_patch(m, out)) << "trial " << trial;
     ASSERT_TRUE(same(p, out)) << "trial " << trial;
   }
-  EXPECT_GT(rle, 500);
+  EXPECT_GT(rle + rows, 500);
   EXPECT_GT(packed, 500);
+}
+
+TEST(MapPatchCodec, RowDeltaCodesABoxByItsEdges) {
+  PatchCells p;
+  p.width = p.height = 50;
+  for (int y = 10; y < 19; ++y) {
+    for (int x = 20; x < 29; ++x)
+      p.cells[static_cast<std::size_t>(y * 50 + x)] = CellState::kOccupied;
+  }
+  const msg::MapPatch m = encoded(p);
+  EXPECT_EQ(m.encoding, msg::MapPatchEncoding::kRowDelta);
+  EXPECT_LE(m.data_bytes, 12);  // free, box top edge, free, box bottom edge, free
+  PatchCells out;
+  ASSERT_TRUE(decode_patch(m, out));
+  EXPECT_TRUE(same(p, out));
+  // A row-delta stream that XORs a cell into the invalid value 3 is rejected.
+  msg::MapPatch bad = m;
+  bad.data[0] = static_cast<std::uint8_t>((bad.data[0] & 0xFC) | 3);
+  EXPECT_FALSE(decode_patch(bad, out));
 }
 
 TEST(MapPatchCodec, AFreePatchIsTiny) {
@@ -58,7 +79,7 @@ TEST(MapPatchCodec, AFreePatchIsTiny) {
   p.width = 50;
   p.height = 50;  // all free
   const msg::MapPatch m = encoded(p);
-  EXPECT_EQ(m.encoding, msg::MapPatchEncoding::kRunLength);
+  EXPECT_NE(m.encoding, msg::MapPatchEncoding::kPacked2Bit);
   EXPECT_EQ(m.data_bytes, 2);  // one run of 2500 cells
 }
 
@@ -98,7 +119,7 @@ TEST(MapPatchCodec, RejectsEveryMalformedPatchAndLeavesTheOutputAlone) {
   m.data[47] = 0xC0;
   rejects(m, "non-zero padding");
   m = good;
-  m.encoding = static_cast<msg::MapPatchEncoding>(9);
+  m.encoding = static_cast<msg::MapPatchEncoding>(3);
   rejects(m, "unknown encoding");
   m = good;
   m.data_bytes = limits::kMaxPatchBytes + 1;

@@ -22,14 +22,12 @@ CellState MapSharer::classify(const Mapper& map, int x, int y) const {
   const int z1 = std::min(
       g.cells_z(),
       static_cast<int>(std::ceil((config_.band_high_m - g.origin_z()) / g.resolution() - 1e-9)));
-  bool all_observed = true;
   for (int z = z0; z < z1; ++z) {
-    const VoxelState s = map.state(VoxelIndex{x, y, z});
-    if (s == VoxelState::kOccupied) return CellState::kOccupied;
-    all_observed = all_observed && s != VoxelState::kUnknown;
+    if (map.state(VoxelIndex{x, y, z}) == VoxelState::kOccupied) return CellState::kOccupied;
   }
-  const bool ground_seen = map.observed(VoxelIndex{x, y, z0 - 1});
-  return (ground_seen || all_observed) ? CellState::kFree : CellState::kUnknown;
+  const bool seen_low =
+      map.observed(VoxelIndex{x, y, z0 - 1}) || map.observed(VoxelIndex{x, y, z0});
+  return seen_low ? CellState::kFree : CellState::kUnknown;
 }
 
 bool MapSharer::make_patch(const Mapper& map, const Vec2& position, double yaw, double speed,
@@ -50,7 +48,7 @@ bool MapSharer::make_patch(const Mapper& map, const Vec2& position, double yaw, 
   cells_.width = hi.x - lo.x + 1;
   cells_.height = hi.y - lo.y + 1;
   // Layer by layer over contiguous rows (cache friendly), accumulating per ground cell:
-  // any band voxel occupied / every band voxel observed / the ground voxel observed.
+  // any band voxel occupied / the ground or the lowest band voxel observed.
   const auto& g3 = map.geometry();
   const int z0 = std::max(
       1,
@@ -60,27 +58,22 @@ bool MapSharer::make_patch(const Mapper& map, const Vec2& position, double yaw, 
       static_cast<int>(std::ceil((config_.band_high_m - g3.origin_z()) / g3.resolution() - 1e-9)));
   const std::size_t n = static_cast<std::size_t>(cells_.width * cells_.height);
   std::fill_n(occupied_.begin(), n, false);
-  std::fill_n(band_seen_.begin(), n, true);
-  std::fill_n(ground_seen_.begin(), n, false);
+  std::fill_n(seen_low_.begin(), n, false);
   for (int z = z0 - 1; z < z1; ++z) {
     for (int y = 0; y < cells_.height; ++y) {
       const std::int8_t* row = map.row(lo.y + y, z) + lo.x;
       const std::size_t base = static_cast<std::size_t>(y * cells_.width);
       for (int x = 0; x < cells_.width; ++x) {
         const VoxelState s = map.state_of(row[x]);
-        if (z == z0 - 1) {
-          ground_seen_[base + static_cast<std::size_t>(x)] = s != VoxelState::kUnknown;
-        } else {
-          occupied_[base + static_cast<std::size_t>(x)] |= s == VoxelState::kOccupied;
-          band_seen_[base + static_cast<std::size_t>(x)] &= s != VoxelState::kUnknown;
-        }
+        const std::size_t c = base + static_cast<std::size_t>(x);
+        if (z <= z0) seen_low_[c] = seen_low_[c] || s != VoxelState::kUnknown;
+        if (z >= z0) occupied_[c] = occupied_[c] || s == VoxelState::kOccupied;
       }
     }
   }
   for (std::size_t i = 0; i < n; ++i) {
-    cells_.cells[i] =
-        occupied_[i] ? CellState::kOccupied
-                     : (ground_seen_[i] || band_seen_[i] ? CellState::kFree : CellState::kUnknown);
+    cells_.cells[i] = occupied_[i] ? CellState::kOccupied
+                                   : (seen_low_[i] ? CellState::kFree : CellState::kUnknown);
   }
   if (!encode_patch(cells_, out)) return false;
   out.resolution_m = g.resolution();
@@ -101,7 +94,7 @@ bool MapSharer::should_send(RobotId ugv_id, TimePoint now, const msg::MapPatch& 
   const bool same = u.origin_x_m == patch.origin_x_m && u.origin_y_m == patch.origin_y_m &&
                     u.width == patch.width_cells && u.height == patch.height_cells &&
                     u.bytes == patch.data_bytes && u.checksum == sum;
-  if (same && now - u.last_sent < config_.refresh) {
+  if (same && !elapsed(now, u.last_sent, config_.refresh)) {
     ++counters_.skipped_unchanged;
     return false;
   }

@@ -63,8 +63,11 @@ const ScheduleResult& Scheduler::solve(const ScheduleProblem& problem) {
   StaticVector<std::uint8_t, kMaxStops> by_deadline;
   for (int k = 1; k <= n; ++k)
     (void)by_deadline.push_back(static_cast<std::uint8_t>(k));
-  std::stable_sort(by_deadline.begin(), by_deadline.end(),
-                   [&](std::uint8_t a, std::uint8_t b) { return problem.due[a] < problem.due[b]; });
+  // std::sort with a total order (the key, then the stop number): as deterministic as a
+  // stable sort, and unlike std::stable_sort it never allocates a temporary buffer.
+  std::sort(by_deadline.begin(), by_deadline.end(), [&](std::uint8_t a, std::uint8_t b) {
+    return problem.due[a] != problem.due[b] ? problem.due[a] < problem.due[b] : a < b;
+  });
   if (n == 0 || config_.mode == ScheduleMode::kNoScheduling) {
     finish(problem, {by_deadline.begin(), by_deadline.end()}, result_);
     return result_;
@@ -419,8 +422,9 @@ void Scheduler::solve_heuristic(const ScheduleProblem& p, bool iterate, Schedule
   RouteCost best_cost{};
   best_.clear();
   // Constructions: insertion by deadline, and by distance from the UAV.
-  std::stable_sort(order.begin(), order.end(),
-                   [&](std::uint8_t a, std::uint8_t b) { return p.due[a] < p.due[b]; });
+  std::sort(order.begin(), order.end(), [&](std::uint8_t a, std::uint8_t b) {
+    return p.due[a] != p.due[b] ? p.due[a] < p.due[b] : a < b;
+  });
   insertion(p, {order.begin(), order.end()});
   local_search(p);
   keep_if_better(best_cost);
@@ -429,8 +433,9 @@ void Scheduler::solve_heuristic(const ScheduleProblem& p, bool iterate, Schedule
     out.exact = false;
     return;
   }
-  std::stable_sort(order.begin(), order.end(),
-                   [&](std::uint8_t a, std::uint8_t b) { return p.travel[0][a] < p.travel[0][b]; });
+  std::sort(order.begin(), order.end(), [&](std::uint8_t a, std::uint8_t b) {
+    return p.travel[0][a] != p.travel[0][b] ? p.travel[0][a] < p.travel[0][b] : a < b;
+  });
   insertion(p, {order.begin(), order.end()});
   local_search(p);
   keep_if_better(best_cost);

@@ -49,7 +49,7 @@ Status UgvNavTask::init(TimePoint now) {
   if (Status s = patches_in_.attach(transport_, config_.id); !s) return s;
   if (Status s = statuses_in_.attach(transport_); !s) return s;
   started_ = last_control_ = now;
-  last_plan_ = TimePoint::min();
+  last_plan_ = kNever;
   initialised_ = true;
   return Status::ok();
 }
@@ -245,8 +245,9 @@ void UgvNavTask::collect_others(TimePoint now) {
 }
 
 bool UgvNavTask::replan_needed(TimePoint now) const {
-  if (no_path_) return now - last_plan_ >= config_.no_path_retry;
-  return replan_requested_ || trajectory_.empty() || now - last_plan_ >= config_.replan_period ||
+  if (no_path_) return elapsed(now, last_plan_, config_.no_path_retry);
+  return replan_requested_ || trajectory_.empty() ||
+         elapsed(now, last_plan_, config_.replan_period) ||
          cross_track_m_ > config_.replan_cross_track_m;
 }
 

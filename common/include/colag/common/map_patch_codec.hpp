@@ -5,6 +5,8 @@
 // - kPacked2Bit: 4 cells per byte, cell i in bits 2*(i%4)..+1 (value 3 invalid, padding 0);
 // - kRunLength: runs of one state; each run is a varint (state | (length-1) << 2): 7 bits per
 //   byte, high bit = more bytes follow. Maps are mostly long free runs: a few bytes per row.
+// - kRowDelta: the same runs over each cell XOR the cell one row below (row 0: XOR free).
+//   A box then costs runs only where it starts and ends, not on every row it spans.
 // The decoder validates everything (sizes, lengths, values, trailing bytes) and writes its
 // output only on success.
 #include <array>

@@ -18,6 +18,15 @@ struct RobotClockTag {
 };
 using TimePoint = std::chrono::time_point<RobotClockTag, Duration>;
 
+// "Never happened": the initial value of a last-time-something-happened field. Never subtract
+// from it (signed overflow); ask elapsed() instead.
+inline constexpr TimePoint kNever = TimePoint::min();
+
+// True when at least `d` has passed since `since`, or `since` is kNever.
+constexpr bool elapsed(TimePoint now, TimePoint since, Duration d) {
+  return since == kNever || now - since >= d;
+}
+
 constexpr double to_seconds(Duration d) {
   return static_cast<double>(d.count()) * 1e-9;
 }

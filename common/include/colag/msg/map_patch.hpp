@@ -10,6 +10,7 @@ namespace colag::msg {
 enum class MapPatchEncoding : std::uint8_t {
   kPacked2Bit = 0,  // 2 bits per cell, row-major from (0,0), cell 0 in the low bits of byte 0
   kRunLength = 1,   // runs of one state (see common/map_patch_codec)
+  kRowDelta = 2,    // runs over each cell XOR the cell one row below (see common/map_patch_codec)
 };
 
 // A 2-D window of the UAV's map, classified for ground robots (UAV -> one UGV, ~5 Hz each).

@@ -4,9 +4,11 @@
 // - Window: the UGV's position +- half_box_m, shifted ahead along its heading (4.375 m ahead,
 //   0.625 m behind by default) while it moves faster than moving_speed_mps.
 // - A ground cell is occupied if any voxel of the robot's body band [band_low_m, band_high_m)
-//   above it is occupied; free if none is and either the ground under it or the whole band
-//   has been observed (a ray reached the ground there, or crossed every band voxel); unknown
-//   otherwise (occlusion shadows, the blind cone under the UAV).
+//   above it is occupied; free if none is and the ground voxel or the lowest band voxel has
+//   been observed (any obstacle standing there tall enough to matter fills that lowest band
+//   voxel, so seeing it free rules the obstacle out); unknown otherwise (occlusion shadows,
+//   the blind cone under the UAV). Requiring every band voxel to be observed instead leaves
+//   rings of unknown between the LiDAR's beam rings that no obstacle explains.
 // - Rate: every UGV has its own period (default 200 ms = 5 Hz) and its own due time, so no UGV
 //   waits for another; a patch identical to the last one sent to that UGV is skipped unless
 //   `refresh` has passed.
@@ -55,7 +57,7 @@ class MapSharer {
  private:
   struct PerUgv {
     TimePoint next_due{};
-    TimePoint last_sent = TimePoint::min();
+    TimePoint last_sent = kNever;
     double origin_x_m = 0.0, origin_y_m = 0.0;
     std::uint16_t width = 0, height = 0, bytes = 0;
     std::uint32_t checksum = 0;
@@ -63,7 +65,7 @@ class MapSharer {
   SharerConfig config_;
   SharerCounters counters_;
   PatchCells cells_;
-  std::array<bool, limits::kMaxPatchCells> occupied_{}, band_seen_{}, ground_seen_{};
+  std::array<bool, limits::kMaxPatchCells> occupied_{}, seen_low_{};
   std::array<PerUgv, limits::kMaxUgvs> ugvs_{};
 };
 

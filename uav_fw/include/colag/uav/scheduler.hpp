@@ -62,7 +62,7 @@ struct SchedulerConfig {
   // Heuristic effort: route evaluations (one unit per stop looked at) across all restarts.
   // Bounds the solve time for any n: about 1 ms on a desktop core.
   std::uint64_t work_budget = 200'000;
-  int stagnation_per_stop = 2;  // iterated search ends after 2n perturbations without progress
+  int stagnation_per_stop = 1;  // iterated search ends after n perturbations without progress
 };
 
 class Scheduler {
@@ -80,7 +80,7 @@ class Scheduler {
   };
   static constexpr std::uint32_t kNone = 0xFFFFFFFFu;
   static constexpr std::size_t kStates = (std::size_t{1} << kExactMaxStops) * kExactMaxStops;
-  static constexpr std::size_t kPool = std::size_t{1} << 18;
+  static constexpr std::size_t kPool = std::size_t{1} << 17;  // 4 MB of labels
   static constexpr std::size_t kFront = 32;
 
   // Exact DP. `hard` drops every late label; `bound` (optional) drops every label that cannot

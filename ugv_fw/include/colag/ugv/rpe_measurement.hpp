@@ -20,7 +20,7 @@ class UavOdometryHistory {
   // The UAV pose at t: interpolated between the samples around t, or the nearest sample if it
   // is within `tolerance` (t outside the kept history).
   bool pose_at(TimePoint t, Duration tolerance, Pose3& out) const;
-  TimePoint newest() const { return entries_.empty() ? TimePoint::min() : entries_.back().t; }
+  TimePoint newest() const { return entries_.empty() ? kNever : entries_.back().t; }
 
  private:
   struct Entry {

@@ -1,0 +1,58 @@
+// colag_bench: measurements of the whole system. Modes:
+//   colag_bench scheduler --instance FILE   solve a TSPTW instance (standard matrix format)
+//                                           with the UAV's scheduler and print the tour
+// (The paper's tables, run over seeds and cores, arrive with the mission runner.)
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cstdio>
+#include <memory>
+
+#include "tsptw_instance.hpp"
+
+using namespace colag;
+
+namespace {
+
+int run_scheduler(const std::string& path, int exact_max) {
+  auto problem = std::make_unique<uav::ScheduleProblem>();
+  std::string error;
+  if (!programs::read_tsptw(path, *problem, error)) {
+    std::fprintf(stderr, "colag_bench scheduler: %s\n", error.c_str());
+    return 2;
+  }
+  uav::SchedulerConfig cfg;
+  cfg.exact_max_stops = exact_max;
+  auto scheduler = std::make_unique<uav::Scheduler>(cfg);
+  const auto t0 = std::chrono::steady_clock::now();
+  const uav::ScheduleResult& r = scheduler->solve(*problem);
+  const double ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  std::printf("instance   %s (%d customers)\n", path.c_str(), problem->n);
+  std::printf("tour       0");
+  for (const auto k : r.order)
+    std::printf(" %d", k);
+  std::printf(" 0\n");
+  std::printf("travel     %.3f\n", r.cost.travel_s);
+  std::printf("feasible   %s (total lateness %.3f)\n", r.cost.feasible ? "yes" : "no",
+              r.cost.lateness_s);
+  std::printf("optimal    %s\n", r.exact ? "proven" : "not proven (heuristic)");
+  std::printf("time       %.3f ms\n", ms);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"colag_bench: ColAG-fw measurements"};
+  app.require_subcommand(1);
+  auto* sched = app.add_subcommand("scheduler", "solve a TSPTW instance with the UAV's scheduler");
+  std::string instance;
+  int exact_max = uav::kExactMaxStops;
+  sched->add_option("--instance", instance, "TSPTW file: N, N x N matrix, N lines 'ready due'")
+      ->required();
+  sched->add_option("--exact-max", exact_max, "largest instance solved exactly (0: heuristic only)")
+      ->check(CLI::Range(0, uav::kExactMaxStops));
+  CLI11_PARSE(app, argc, argv);
+  if (*sched) return run_scheduler(instance, exact_max);
+  return 2;
+}

@@ -1,0 +1,330 @@
+// The UAV supervisor task with scripted devices: a point-mass UAV that follows the setpoints,
+// the mock LiDAR over a box world, and UGVs played by the test through the transport.
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <vector>
+
+#include "allocation_counter.hpp"
+#include "colag/hal/scripted/scripted_devices.hpp"
+#include "colag/mock/lidar_simulator.hpp"
+#include "colag/platform/lockstep_executor.hpp"
+#include "colag/platform/loopback_transport.hpp"
+#include "colag/uav/rpe_relay.hpp"
+#include "colag/uav/uav_supervisor_task.hpp"
+
+using namespace colag;
+using namespace colag::uav;
+using namespace std::chrono_literals;
+
+namespace {
+
+// The UAV body and its sensors: follows velocity setpoints (acceleration-limited), scans the
+// world at 10 Hz, sees UGVs within 5 m.
+class Sky final : public platform::Task {
+ public:
+  Sky(hal::scripted::ScriptedOdometrySource& odom, hal::scripted::ScriptedLidar& lidar,
+      hal::scripted::ScriptedRelativePoseSensor& camera,
+      hal::scripted::RecordingFlightController& fc, const mock::BoxWorld& world)
+      : odom_(odom),
+        lidar_(lidar),
+        camera_(camera),
+        fc_(fc),
+        world_(world),
+        sim_(std::make_unique<mock::LidarSimulator>()) {}
+  const char* name() const override { return "sky"; }
+  void step(TimePoint now) override {
+    const double dt = 0.02;
+    if (fc_.count() > 0) {
+      Vec3 dv = fc_.last().velocity_mps - v;
+      if (dv.norm() > 1.0 * dt) dv *= 1.0 * dt / dv.norm();
+      v += dv;
+    }
+    p += v * dt;
+    travelled += v.norm() * dt;
+    hal::UavState s;
+    s.stamp = now;
+    s.pose = {p, Quat::Identity()};
+    s.velocity_mps = v;
+    (void)odom_.push(s);
+    if (++ticks_ % 5 == 0) {  // 10 Hz
+      std::span<const hal::LidarPoint> pts, misses;
+      sim_->scan(world_, s.pose, pts, misses);
+      (void)lidar_.set_scan(now, 8.0F, pts, misses);
+      hal::scripted::ScriptedRelativePoseSensor::Frame frame;
+      for (RobotId id = 0; id < ugvs.size(); ++id) {
+        const Vec3 rel = Vec3(ugvs[id].x(), ugvs[id].y(), 0.0) - p;
+        if (rel.head<2>().norm() > 5.0) continue;
+        hal::RelativePoseDetection d;
+        d.stamp = now;
+        d.ugv_id = id;
+        d.ugv_in_uav = {rel, Quat::Identity()};
+        d.covariance = Eigen::Vector4d(0.04, 0.04, 0.04, 0.0025).asDiagonal();
+        (void)frame.push_back(d);
+      }
+      (void)camera_.push_frame(frame);
+    }
+  }
+  Vec3 p = Vec3(0, 0, 1);
+  Vec3 v = Vec3::Zero();
+  double travelled = 0.0;
+  std::vector<Vec2> ugvs;  // where the UGVs are (for the camera)
+
+ private:
+  hal::scripted::ScriptedOdometrySource& odom_;
+  hal::scripted::ScriptedLidar& lidar_;
+  hal::scripted::ScriptedRelativePoseSensor& camera_;
+  hal::scripted::RecordingFlightController& fc_;
+  const mock::BoxWorld& world_;
+  std::unique_ptr<mock::LidarSimulator> sim_;
+  int ticks_ = 0;
+};
+
+template <class Msg>
+class Collect final : public platform::SampleSink {
+ public:
+  Collect() { got.reserve(4096); }  // the allocation test counts the test's own sinks too
+  void on_sample(msg::Topic, const void* s, TimePoint) override {
+    got.push_back(*static_cast<const Msg*>(s));
+  }
+  std::vector<Msg> got;
+};
+
+struct Rig {
+  Rig() {
+    mock::MapGenConfig cfg;
+    cfg.boxes = 40;
+    cfg.seed = 3;
+    world = mock::generate_box_world(cfg).value();
+    bus = std::make_unique<platform::LoopbackTransport>(1);
+    lidar = std::make_unique<hal::scripted::ScriptedLidar>();
+    sky = std::make_unique<Sky>(odom, *lidar, camera, fc, world);
+    uav =
+        std::make_unique<UavSupervisorTask>(UavSupervisorConfig{}, *bus, odom, *lidar, camera, fc);
+    pump = std::make_unique<platform::TransportPump>(*bus);
+    EXPECT_TRUE(bus->subscribe(msg::Topic::kMapPatch, kAnyRobot, patches));
+    EXPECT_TRUE(bus->subscribe(msg::Topic::kSupportPlan, kAnyRobot, plans));
+    EXPECT_TRUE(bus->subscribe(msg::Topic::kRelativePose, kAnyRobot, rpes));
+    EXPECT_TRUE(ex.add({pump.get(), 10ms, 1ms}));
+    EXPECT_TRUE(ex.add({sky.get(), 20ms, 5ms}));
+    EXPECT_TRUE(ex.add({&uav->control_loop(), 20ms, 2ms}));
+    EXPECT_TRUE(ex.add({&uav->mapping_loop(), 100ms, 20ms}));
+    EXPECT_TRUE(ex.add({&uav->sharing_loop(), 50ms, 5ms}));
+    EXPECT_TRUE(ex.add({&uav->scheduling_loop(), 100ms, 5ms}));
+    EXPECT_TRUE(ex.init());
+  }
+  void status(RobotId id, Vec2 p, msg::UgvMode mode = msg::UgvMode::kDriving) {
+    msg::UgvStatus s;
+    s.stamp = ex.now();
+    s.ugv_id = id;
+    s.mode = mode;
+    s.position_m[0] = p.x();
+    s.position_m[1] = p.y();
+    s.yaw_rad = -M_PI / 2;
+    ASSERT_TRUE(bus->publish(s));
+  }
+  void request(RobotId id, Vec2 support, double t_pc, bool cancel = false) {
+    msg::CollisionInfo ci;
+    ci.stamp = ex.now();
+    ci.ugv_id = id;
+    ci.seq = ++seq;
+    ci.cancel = cancel;
+    ci.support_point_m[0] = support.x();
+    ci.support_point_m[1] = support.y();
+    ci.collision_point_m[0] = support.x();
+    ci.collision_point_m[1] = support.y() - 2.0;
+    ci.time_to_collision_s = t_pc;
+    ASSERT_TRUE(bus->publish(ci));
+  }
+  double distance_to(Vec2 q) const { return (sky->p.head<2>() - q).norm(); }
+
+  mock::BoxWorld world;
+  hal::scripted::ScriptedOdometrySource odom;
+  std::unique_ptr<hal::scripted::ScriptedLidar> lidar;
+  hal::scripted::ScriptedRelativePoseSensor camera;
+  hal::scripted::RecordingFlightController fc;
+  std::unique_ptr<platform::LoopbackTransport> bus;
+  std::unique_ptr<Sky> sky;
+  std::unique_ptr<UavSupervisorTask> uav;
+  std::unique_ptr<platform::TransportPump> pump;
+  Collect<msg::MapPatch> patches;
+  Collect<msg::SupportPlan> plans;
+  Collect<msg::RelativePose> rpes;
+  platform::LockstepExecutor ex;
+  std::uint32_t seq = 0;
+};
+
+}  // namespace
+
+TEST(UavSupervisorTask, FliesTheScheduledOrderHoversUntilCancelledThenMovesOn) {
+  Rig rig;
+  // UGV 0 needs support soon near (6, 0); UGV 1 later near (-8, 6).
+  const Vec2 a(6.0, 0.0), b(-8.0, 6.0);
+  rig.sky->ugvs = {Vec2(6, -2), Vec2(-8, 4)};
+  rig.status(0, Vec2(6, -2));
+  rig.status(1, Vec2(-8, 4));
+  rig.request(0, a, 8.0);
+  rig.request(1, b, 40.0);
+  rig.ex.run_until(rig.ex.now() + 500ms);
+  ASSERT_FALSE(rig.plans.got.empty());
+  const msg::SupportPlan& plan = rig.plans.got.back();
+  ASSERT_EQ(plan.stop_count, 2);
+  EXPECT_EQ(plan.stops[0].ugv_id, 0);  // the urgent one first
+  EXPECT_EQ(plan.stops[1].ugv_id, 1);
+  EXPECT_EQ(rig.uav->mode(), UavMode::kTransit);
+  // It gets there and hovers (requests heartbeat every second, as the UGVs do).
+  for (int i = 0; i < 10 && rig.distance_to(a) > 1.0; ++i) {
+    rig.request(0, a, 8.0 - i);
+    rig.request(1, b, 40.0 - i);
+    rig.ex.run_until(rig.ex.now() + 1s);
+  }
+  EXPECT_LT(rig.distance_to(a), 1.0);
+  rig.ex.run_until(rig.ex.now() + 300ms);
+  EXPECT_EQ(rig.uav->mode(), UavMode::kHover);
+  // Seen by the camera on the way: relative poses went out for UGV 0.
+  bool saw0 = false;
+  for (const auto& r : rig.rpes.got)
+    saw0 |= r.ugv_id == 0;
+  EXPECT_TRUE(saw0);
+  // UGV 0 is fine now: cancel; the UAV goes on to UGV 1.
+  rig.request(0, a, 0.0, /*cancel=*/true);
+  for (int i = 0; i < 20 && rig.distance_to(b) > 1.0; ++i) {
+    rig.request(1, b, 30.0 - i);
+    rig.ex.run_until(rig.ex.now() + 1s);
+  }
+  EXPECT_LT(rig.distance_to(b), 1.0);
+  EXPECT_LT(rig.sky->travelled, 1.3 * ((a - Vec2(0, 0)).norm() + (b - a).norm()));
+  EXPECT_GT(rig.uav->health().schedules_exact, 0u);
+  EXPECT_EQ(rig.uav->health().requests_rejected, 0u);
+}
+
+TEST(UavSupervisorTask, HoverTimeoutGivesOthersATurn) {
+  Rig rig;
+  const Vec2 a(2.0, 0.0), b(-6.0, 0.0);
+  rig.status(0, Vec2(2, -2));
+  rig.status(1, Vec2(-6, -2));
+  for (int i = 0; i < 30 && rig.uav->health().hover_timeouts == 0; ++i) {  // UGV 0 never cancels
+    rig.request(0, a, 3.0);
+    rig.request(1, b, 60.0);
+    rig.ex.run_until(rig.ex.now() + 1s);
+  }
+  EXPECT_EQ(rig.uav->health().hover_timeouts, 1u);
+  for (int i = 0; i < 10; ++i) {
+    rig.request(0, a, 3.0);
+    rig.request(1, b, 50.0);
+    rig.ex.run_until(rig.ex.now() + 1s);
+  }
+  EXPECT_LT(rig.distance_to(b), 1.0);
+}
+
+TEST(UavSupervisorTask, MapPatchesReachEveryUgvAtItsOwnRate) {
+  Rig rig;
+  // 16 UGVs around the arena; the UAV flies a slow circle so the map keeps changing.
+  for (int round = 0; round < 30; ++round) {
+    for (RobotId id = 0; id < 16; ++id)
+      rig.status(id, Vec2(-9.0 + 1.2 * id, (id % 2 ? 3.0 : -3.0)));
+    rig.request(0, Vec2(4.0 * std::cos(round * 0.2), 4.0 * std::sin(round * 0.2)), 5.0);
+    rig.ex.run_until(rig.ex.now() + 100ms);
+  }
+  std::array<int, 16> per_ugv{};
+  std::array<TimePoint, 16> last{};
+  for (const auto& p : rig.patches.got) {
+    ASSERT_LT(p.ugv_id, 16);
+    if (per_ugv[p.ugv_id]++ > 0) {
+      EXPECT_GE(p.stamp - last[p.ugv_id], 200ms) << "faster than 5 Hz";
+    }
+    last[p.ugv_id] = p.stamp;
+    EXPECT_LE(p.width_cells, limits::kMaxPatchSideCells);
+  }
+  for (int id = 0; id < 16; ++id)
+    EXPECT_GE(per_ugv[id], 3) << "UGV " << id << " starved";
+}
+
+TEST(UavSupervisorTask, PatchesAreHundredsOfTimesSmallerThanTheOriginalFormat) {
+  Rig rig;
+  for (int i = 0; i < 40; ++i) {
+    rig.status(0, Vec2(0.0, -4.0));
+    rig.request(0, Vec2(0.0, 8.0 - 0.4 * i), 5.0);  // drag the UAV along a line
+    rig.ex.run_until(rig.ex.now() + 100ms);
+  }
+  ASSERT_FALSE(rig.patches.got.empty());
+  // Payload against payload: our encoded cells against the original's int32 address lists of
+  // the same 5 x 5 x 1.4 m box (headers excluded on both sides; the closing note gives both).
+  std::size_t ours = 0, original = 0;
+  constexpr std::size_t kOriginalHeader = 16 + 2 * 4 + 8 + 3 * 8 + 3 * 4 + 6 * 8 + 2 * 4;
+  for (const auto& p : rig.patches.got) {
+    ours += p.data_bytes;
+    original += original_patch_bytes(rig.uav->mapper(), p, -0.7, 0.7) - kOriginalHeader;
+  }
+  EXPECT_GE(static_cast<double>(original) / static_cast<double>(ours), 100.0)
+      << "ours " << ours << " B, original " << original << " B over " << rig.patches.got.size()
+      << " patches";
+}
+
+TEST(UavSupervisorTask, StepsAllocateNothingInSteadyState) {
+  Rig rig;
+  rig.sky->ugvs = {Vec2(2, 1), Vec2(-3, 2)};
+  rig.status(0, Vec2(2, 1));
+  rig.status(1, Vec2(-3, 2));
+  rig.request(0, Vec2(3, 3), 20.0);
+  rig.request(1, Vec2(-4, 4), 30.0);
+  rig.ex.run_until(TimePoint{2s});
+  {
+    test::AllocationCounter counter;
+    for (int i = 0; i < 1000; ++i) {
+      if (i % 100 == 0) {  // the UGVs' heartbeats, as in a mission
+        rig.status(0, Vec2(2, 1));
+        rig.status(1, Vec2(-3, 2));
+        rig.request(0, Vec2(3, 3), 20.0);
+        rig.request(1, Vec2(-4, 4), 30.0);
+      }
+      rig.ex.step();
+    }
+    EXPECT_EQ(counter.count(), 0u);
+  }
+  EXPECT_GT(rig.uav->mapper().counters().scans, 10u);
+  EXPECT_GT(rig.uav->health().patches_sent, 0u);
+  EXPECT_GT(rig.uav->health().rpe_published, 0u);
+}
+
+TEST(RpeRelay, RefusesMalformedDetections) {
+  hal::RelativePoseDetection d;
+  d.ugv_id = 3;
+  d.covariance = Eigen::Vector4d(0.04, 0.04, 0.04, 0.0025).asDiagonal();
+  ASSERT_TRUE(to_message(d, 0));
+  EXPECT_EQ(to_message(d, 0)->ugv_id, 3);
+  hal::RelativePoseDetection bad = d;
+  bad.ugv_id = 99;
+  EXPECT_FALSE(to_message(bad, 0));
+  bad = d;
+  bad.ugv_in_uav.p.x() = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(to_message(bad, 0));
+  bad = d;
+  bad.covariance(3, 3) = 0.0;
+  EXPECT_FALSE(to_message(bad, 0));
+  bad = d;
+  bad.ugv_in_uav.q.coeffs() *= 2.0;
+  EXPECT_FALSE(to_message(bad, 0));
+}
+
+TEST(UavSupervisorTask, RejectsRequestsWithHostileStampsOrValues) {
+  Rig rig;
+  rig.ex.run_until(TimePoint{1s});
+  msg::CollisionInfo ci;
+  ci.ugv_id = 1;
+  ci.seq = 1;
+  ci.time_to_collision_s = 3.0;
+  ci.stamp = TimePoint::min();  // far past: would overflow every "how long ago" computation
+  ASSERT_TRUE(rig.bus->publish(ci));
+  ci.stamp = rig.ex.now() + 1h;  // from the future
+  ASSERT_TRUE(rig.bus->publish(ci));
+  ci.stamp = rig.ex.now();
+  ci.time_to_collision_s = std::numeric_limits<double>::quiet_NaN();
+  ASSERT_TRUE(rig.bus->publish(ci));
+  ci.time_to_collision_s = 3.0;
+  ci.ugv_id = 500;
+  ASSERT_TRUE(rig.bus->publish(ci));
+  rig.ex.run_until(rig.ex.now() + 500ms);
+  EXPECT_EQ(rig.uav->health().requests_rejected, 4u);
+  EXPECT_EQ(rig.uav->schedule().order.size(), 0u);
+}

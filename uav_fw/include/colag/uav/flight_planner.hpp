@@ -1,0 +1,51 @@
+#pragma once
+// Flies the UAV to a target at the flight altitude: a path around whatever the UAV's own map
+// shows at that altitude (A* on a 2-D "flight layer" kept from the 3-D map, obstacles inflated
+// by the UAV's radius, unknown = free: the UAV sees for itself), followed by acceleration-
+// limited guidance towards a lookahead point with a braking profile, sent as full-state
+// setpoints (position, velocity, acceleration, yaw) through the FlightController HAL.
+#include "colag/common/map_store.hpp"
+#include "colag/common/planner.hpp"
+#include "colag/hal/flight_controller.hpp"
+#include "colag/hal/odometry_source.hpp"
+#include "colag/uav/time_cost.hpp"
+
+namespace colag::uav {
+
+struct FlightPlannerConfig {
+  FlightLimits limits;
+  double altitude_m = 1.0;
+  double lookahead_m = 1.5;
+  double altitude_gain = 1.5;  // vertical speed per metre of altitude error
+  double max_climb_mps = 1.0;
+  double retarget_m = 0.5;  // a target moved further than this is replanned
+  Duration replan_period = std::chrono::seconds(2);
+};
+
+class FlightPlanner {
+ public:
+  explicit FlightPlanner(const FlightPlannerConfig& config) : config_(config) {}
+
+  void set_target(const Vec2& target, TimePoint now, const Vec2& from,
+                  const MapStore& flight_layer);
+  // One guidance step: the setpoint that brings the UAV along the path.
+  hal::FlightSetpoint step(const hal::UavState& state, TimePoint now, double dt_s,
+                           const MapStore& flight_layer);
+  bool has_target() const { return has_target_; }
+  const Vec2& target() const { return target_; }
+  const Path& path() const { return path_; }
+  std::uint64_t plan_failures() const { return plan_failures_; }
+
+ private:
+  void plan(const Vec2& from, TimePoint now, const MapStore& flight_layer);
+
+  FlightPlannerConfig config_;
+  Planner planner_;
+  Path path_;
+  Vec2 target_ = Vec2::Zero();
+  bool has_target_ = false;
+  TimePoint planned_at_{};
+  std::uint64_t plan_failures_ = 0;
+};
+
+}  // namespace colag::uav

@@ -1,0 +1,168 @@
+#pragma once
+// The UAV supervisor task: mapping, map sharing, RPE relay, support scheduling and flight,
+// driven by four loops of one executor table:
+//   control_loop()    50 Hz: odometry -> UavOdometry, camera -> RelativePose, flight setpoints
+//   mapping_loop()    10 Hz: LiDAR scan -> 3-D map; the flight layer once a second
+//   sharing_loop()    20 Hz: a map patch to each UGV whose 5 Hz slot is due
+//   scheduling_loop() 10 Hz: support requests and UGV statuses -> schedule -> flight target,
+//                            SupportPlan
+// Pure task code: HAL and transport interfaces only; no heap, no exceptions, no OS calls in
+// step(); malformed inputs are rejected and counted in health().
+#include <array>
+#include <cstdint>
+
+#include "colag/common/map_store.hpp"
+#include "colag/hal/flight_controller.hpp"
+#include "colag/hal/lidar.hpp"
+#include "colag/hal/odometry_source.hpp"
+#include "colag/hal/relative_pose_sensor.hpp"
+#include "colag/msg/support_plan.hpp"
+#include "colag/platform/readers.hpp"
+#include "colag/uav/flight_planner.hpp"
+#include "colag/uav/map_sharer.hpp"
+#include "colag/uav/mapper.hpp"
+#include "colag/uav/scheduler.hpp"
+
+namespace colag::uav {
+
+struct UavSupervisorConfig {
+  RobotId id = 0;
+  FlightPlannerConfig flight;
+  MapperConfig mapper;
+  SharerConfig sharer;
+  SchedulerConfig scheduler;
+  // The paper's fallback when no order meets every deadline: plan as if v_max were 1.5x, 2.25x,
+  // ... higher until one does (up to 100 times). Off: minimise total lateness instead.
+  bool vmax_escalation = false;
+  Pose3 lidar_mount;              // LiDAR frame -> UAV body
+  double arrival_radius_m = 1.0;  // at a support point when this close (2-D)
+  Duration hover_timeout = std::chrono::seconds(10);
+  double served_moved_m = 1.0;  // a timed-out request returns when its point moves this much
+  Duration request_timeout = std::chrono::seconds(5);  // UGVs heartbeat every second
+  Duration status_timeout = std::chrono::seconds(5);
+  double commit_radius_m = 3.0;     // this close to the current stop, the schedule keeps it
+  double uav_radius_m = 0.3;        // flight-layer inflation
+  double flight_band_half_m = 0.5;  // flight layer: obstacles within +- this of the altitude
+  Duration flight_layer_period = std::chrono::seconds(1);
+  Duration plan_publish_period = std::chrono::seconds(1);
+  Duration max_future_skew = std::chrono::milliseconds(200);
+};
+
+enum class UavMode : std::uint8_t { kIdle, kTransit, kHover };
+
+struct UavHealth {
+  std::uint64_t rpe_published = 0;
+  std::uint64_t rpe_rejected = 0;
+  std::uint64_t requests_rejected = 0;
+  std::uint64_t statuses_rejected = 0;
+  std::uint64_t patches_sent = 0;
+  std::uint64_t setpoint_errors = 0;
+  std::uint64_t schedules = 0;
+  std::uint64_t schedules_exact = 0;
+  std::uint64_t hover_timeouts = 0;
+};
+
+class UavSupervisorTask {
+ public:
+  UavSupervisorTask(const UavSupervisorConfig& config, platform::Transport& transport,
+                    hal::OdometrySource& odometry, hal::Lidar& lidar,
+                    hal::RelativePoseSensor& camera, hal::FlightController& flight);
+  UavSupervisorTask(const UavSupervisorTask&) = delete;
+  UavSupervisorTask& operator=(const UavSupervisorTask&) = delete;
+
+  platform::Task& control_loop() { return control_loop_; }
+  platform::Task& mapping_loop() { return mapping_loop_; }
+  platform::Task& sharing_loop() { return sharing_loop_; }
+  platform::Task& scheduling_loop() { return scheduling_loop_; }
+
+  const Mapper& mapper() const { return mapper_; }
+  const MapSharer& sharer() const { return sharer_; }
+  const ScheduleResult& schedule() const { return schedule_; }
+  const msg::SupportPlan& plan() const { return plan_; }
+  UavMode mode() const { return mode_; }
+  const FlightPlanner& flight() const { return flight_; }
+  const UavHealth& health() const { return health_; }
+  const UavSupervisorConfig& config() const { return config_; }
+
+ private:
+  class Loop final : public platform::Task {
+   public:
+    using Step = void (UavSupervisorTask::*)(TimePoint);
+    Loop(UavSupervisorTask& owner, const char* name, Step fn)
+        : owner_(owner), name_(name), step_(fn) {}
+    const char* name() const override { return name_; }
+    Status init(TimePoint now) override { return owner_.init(now); }
+    void step(TimePoint now) override { (owner_.*step_)(now); }
+
+   private:
+    UavSupervisorTask& owner_;
+    const char* name_;
+    Step step_;
+  };
+  struct Request {
+    bool active = false;
+    bool served = false;  // hovered there until the timeout: skip until it moves
+    std::uint32_t seq = 0;
+    TimePoint heard{};
+    TimePoint deadline{};
+    Vec2 support = Vec2::Zero();
+    Vec2 served_at = Vec2::Zero();
+  };
+  struct Ugv {
+    bool known = false;
+    TimePoint heard{};
+    TimePoint last_seen = kNever;  // last relative pose of it
+    msg::UgvStatus status;
+  };
+
+  Status init(TimePoint now);
+  void control_step(TimePoint now);
+  void mapping_step(TimePoint now);
+  void sharing_step(TimePoint now);
+  void scheduling_step(TimePoint now);
+
+  void read_requests(TimePoint now);
+  void read_statuses(TimePoint now);
+  void solve(TimePoint now);
+  bool choose_target(TimePoint now, Vec2& target);
+  void refresh_flight_layer();
+  void publish_plan(TimePoint now, bool changed);
+
+  UavSupervisorConfig config_;
+  platform::Transport& transport_;
+  hal::OdometrySource& odometry_;
+  hal::Lidar& lidar_;
+  hal::RelativePoseSensor& camera_;
+  hal::FlightController& flight_out_;
+  Loop control_loop_, mapping_loop_, sharing_loop_, scheduling_loop_;
+  bool initialised_ = false;
+
+  platform::QueueReader<msg::CollisionInfo, 4 * limits::kMaxUgvs> requests_in_;
+  platform::QueueReader<msg::UgvStatus, 4 * limits::kMaxUgvs> statuses_in_;
+
+  hal::UavState state_;
+  bool have_state_ = false;
+  TimePoint last_control_{};
+  TimePoint flight_layer_at_ = kNever;
+  Mapper mapper_;
+  MapSharer sharer_;
+  MapSharer flight_cutter_;  // cuts flight-altitude patches for the flight layer
+  MapStore flight_layer_;
+  FlightPlanner flight_;
+  Scheduler scheduler_;
+  ScheduleProblem problem_;
+  ScheduleResult schedule_;
+  StaticVector<RobotId, kMaxStops> stop_ugv_;  // schedule node k -> UGV id
+  std::array<Request, limits::kMaxUgvs> requests_{};
+  std::array<Ugv, limits::kMaxUgvs> ugvs_{};
+  int target_ugv_ = -1;  // UGV whose support point we fly to, -1: none
+  bool target_is_request_ = false;
+  TimePoint hover_since_ = kNever;
+  UavMode mode_ = UavMode::kIdle;
+  msg::SupportPlan plan_;
+  TimePoint plan_published_ = kNever;
+  std::uint32_t patch_seq_ = 0;
+  UavHealth health_;
+};
+
+}  // namespace colag::uav

@@ -1,0 +1,338 @@
+#include "colag/uav/uav_supervisor_task.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "colag/uav/rpe_relay.hpp"
+#include "colag/uav/time_cost.hpp"
+
+namespace colag::uav {
+
+namespace {
+
+MapStoreConfig flight_layer_config(const UavSupervisorConfig& c) {
+  MapStoreConfig m;
+  m.plan_inflation_m = c.uav_radius_m;
+  m.predict_inflation_m = 0.0;  // unused: the UAV plans, it does not predict collisions here
+  return m;
+}
+
+SharerConfig flight_cutter_config(const UavSupervisorConfig& c) {
+  SharerConfig s;
+  s.band_low_m = c.flight.altitude_m - c.flight_band_half_m;
+  s.band_high_m = c.flight.altitude_m + c.flight_band_half_m;
+  s.half_box_m = 0.5 * limits::kMaxPatchSideCells * limits::kGridResolution_m - 0.1;
+  s.shift_ahead_m = 0.0;
+  return s;
+}
+
+}  // namespace
+
+UavSupervisorTask::UavSupervisorTask(const UavSupervisorConfig& config,
+                                     platform::Transport& transport, hal::OdometrySource& odometry,
+                                     hal::Lidar& lidar, hal::RelativePoseSensor& camera,
+                                     hal::FlightController& flight)
+    : config_(config),
+      transport_(transport),
+      odometry_(odometry),
+      lidar_(lidar),
+      camera_(camera),
+      flight_out_(flight),
+      control_loop_(*this, "uav_control", &UavSupervisorTask::control_step),
+      mapping_loop_(*this, "uav_mapping", &UavSupervisorTask::mapping_step),
+      sharing_loop_(*this, "uav_sharing", &UavSupervisorTask::sharing_step),
+      scheduling_loop_(*this, "uav_scheduling", &UavSupervisorTask::scheduling_step),
+      mapper_(config.mapper),
+      sharer_(config.sharer),
+      flight_cutter_(flight_cutter_config(config)),
+      flight_layer_(flight_layer_config(config)),
+      flight_(config.flight),
+      scheduler_(config.scheduler) {}
+
+Status UavSupervisorTask::init(TimePoint now) {
+  if (initialised_) return Status::ok();
+  if (Status s = requests_in_.attach(transport_); !s) return s;
+  if (Status s = statuses_in_.attach(transport_); !s) return s;
+  last_control_ = now;
+  initialised_ = true;
+  return Status::ok();
+}
+
+// --- control loop (50 Hz)
+// -------------------------------------------------------------------------
+
+void UavSupervisorTask::control_step(TimePoint now) {
+  const double dt = std::clamp(to_seconds(now - last_control_), 1e-3, 0.1);
+  last_control_ = now;
+  hal::UavState s;
+  while (odometry_.poll(s)) {
+    if (!all_finite(s.pose.p) || !s.pose.q.coeffs().allFinite() || !all_finite(s.velocity_mps))
+      continue;
+    state_ = s;
+    have_state_ = true;
+    msg::UavOdometry od;
+    od.stamp = s.stamp;
+    od.uav_id = config_.id;
+    for (int i = 0; i < 3; ++i) {
+      od.position_m[i] = s.pose.p[i];
+      od.velocity_mps[i] = s.velocity_mps[i];
+    }
+    const Quat q = s.pose.q.normalized();
+    od.orientation_wxyz[0] = q.w();
+    od.orientation_wxyz[1] = q.x();
+    od.orientation_wxyz[2] = q.y();
+    od.orientation_wxyz[3] = q.z();
+    od.yaw_rate_radps = s.yaw_rate_radps;
+    (void)transport_.publish(od);
+  }
+  std::array<hal::RelativePoseDetection, limits::kMaxRpeDetectionsPerFrame> detections;
+  const std::size_t n = camera_.poll(detections);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Result<msg::RelativePose> m = to_message(detections[i], config_.id);
+    if (!m || detections[i].stamp > now + config_.max_future_skew) {
+      ++health_.rpe_rejected;
+      continue;
+    }
+    if (transport_.publish(m.value())) ++health_.rpe_published;
+    ugvs_[detections[i].ugv_id].last_seen = detections[i].stamp;
+  }
+  if (!have_state_) return;
+  if (!flight_out_.send_setpoint(flight_.step(state_, now, dt, flight_layer_)))
+    ++health_.setpoint_errors;
+}
+
+// --- mapping loop (10 Hz)
+// -------------------------------------------------------------------------
+
+void UavSupervisorTask::mapping_step(TimePoint now) {
+  hal::LidarScanView scan;
+  if (lidar_.poll(scan) && have_state_)
+    mapper_.insert_scan(state_.pose.compose(config_.lidar_mount), scan);
+  if (have_state_ && elapsed(now, flight_layer_at_, config_.flight_layer_period)) {
+    flight_layer_at_ = now;
+    refresh_flight_layer();
+  }
+}
+
+void UavSupervisorTask::refresh_flight_layer() {
+  // 3 x 3 patches around the UAV: what the map knows at flight altitude within ~10 m.
+  const double step = limits::kMaxPatchSideCells * limits::kGridResolution_m - 0.2;
+  msg::MapPatch patch;
+  for (int dy = -1; dy <= 1; ++dy) {
+    for (int dx = -1; dx <= 1; ++dx) {
+      const Vec2 centre = state_.pose.p.head<2>() + step * Vec2(dx, dy);
+      if (flight_cutter_.make_patch(mapper_, centre, 0.0, 0.0, patch))
+        (void)flight_layer_.apply(patch);
+    }
+  }
+}
+
+// --- sharing loop (20 Hz)
+// -------------------------------------------------------------------------
+
+void UavSupervisorTask::sharing_step(TimePoint now) {
+  msg::MapPatch patch;
+  for (RobotId id = 0; id < limits::kMaxUgvs; ++id) {
+    const Ugv& u = ugvs_[id];
+    if (!u.known || now - u.heard > config_.status_timeout || !sharer_.due(id, now)) continue;
+    const Vec2 p(u.status.position_m[0], u.status.position_m[1]);
+    if (!sharer_.make_patch(mapper_, p, u.status.yaw_rad, u.status.velocity_mps, patch)) continue;
+    if (!sharer_.should_send(id, now, patch)) continue;
+    patch.stamp = now;
+    patch.uav_id = config_.id;
+    patch.ugv_id = id;
+    patch.seq = ++patch_seq_;
+    if (transport_.publish(patch)) ++health_.patches_sent;
+  }
+}
+
+// --- scheduling loop (10 Hz)
+// ----------------------------------------------------------------------
+
+void UavSupervisorTask::read_requests(TimePoint now) {
+  msg::CollisionInfo ci;
+  while (requests_in_.pop(ci)) {
+    const bool finite = std::isfinite(ci.time_to_collision_s) &&
+                        std::isfinite(ci.support_point_m[0]) &&
+                        std::isfinite(ci.support_point_m[1]);
+    if (ci.ugv_id >= limits::kMaxUgvs || ci.stamp > now + config_.max_future_skew ||
+        ci.stamp < now - config_.request_timeout ||
+        (!ci.cancel && (!finite || ci.time_to_collision_s < 0.0))) {
+      ++health_.requests_rejected;
+      continue;
+    }
+    Request& r = requests_[ci.ugv_id];
+    if (r.heard != TimePoint{} && ci.seq <= r.seq && ci.stamp <= r.heard)
+      continue;  // old or duplicate
+    r.seq = ci.seq;
+    r.heard = ci.stamp;
+    if (ci.cancel) {
+      r.active = r.served = false;
+      continue;
+    }
+    r.active = true;
+    r.support = Vec2(ci.support_point_m[0], ci.support_point_m[1]);
+    r.deadline = ci.stamp + seconds(ci.time_to_collision_s);
+    if (r.served && (r.support - r.served_at).norm() > config_.served_moved_m) r.served = false;
+  }
+  for (Request& r : requests_) {
+    if (r.active && now - r.heard > config_.request_timeout)
+      r.active = false;  // heartbeats stopped
+  }
+}
+
+void UavSupervisorTask::read_statuses(TimePoint now) {
+  msg::UgvStatus s;
+  while (statuses_in_.pop(s)) {
+    if (s.ugv_id >= limits::kMaxUgvs || !std::isfinite(s.position_m[0]) ||
+        !std::isfinite(s.position_m[1]) || !std::isfinite(s.yaw_rad) ||
+        !std::isfinite(s.velocity_mps) || s.stamp > now + config_.max_future_skew) {
+      ++health_.statuses_rejected;
+      continue;
+    }
+    Ugv& u = ugvs_[s.ugv_id];
+    if (u.known && s.stamp <= u.status.stamp) continue;
+    u.known = true;
+    u.heard = now;
+    u.status = s;
+  }
+}
+
+void UavSupervisorTask::solve(TimePoint now) {
+  stop_ugv_.clear();
+  problem_ = ScheduleProblem{};
+  for (RobotId id = 0; id < limits::kMaxUgvs; ++id) {
+    const Request& r = requests_[id];
+    if (r.active && !r.served) (void)stop_ugv_.push_back(id);
+  }
+  problem_.n = static_cast<int>(stop_ugv_.size());
+  if (problem_.n == 0) {
+    schedule_ = ScheduleResult{};
+    return;
+  }
+  const Vec2 p = state_.pose.p.head<2>(), v = state_.velocity_mps.head<2>();
+  const auto build = [&](double speedup) {
+    FlightLimits lim = config_.flight.limits;
+    lim.v_max_mps *= speedup;
+    for (int i = 0; i <= problem_.n; ++i) {
+      const Vec2 from = i == 0 ? p : requests_[stop_ugv_[static_cast<std::size_t>(i - 1)]].support;
+      for (int j = 1; j <= problem_.n; ++j) {
+        const Vec2 to = requests_[stop_ugv_[static_cast<std::size_t>(j - 1)]].support;
+        problem_.travel[i][j] =
+            i == j ? 0.0
+                   : (i == 0 ? first_leg_time_s(from, v, to, lim) : cruise_time_s(from, to, lim));
+      }
+      problem_.travel[i][0] = 0.0;  // open route
+    }
+    problem_.due[0] = 1e18;
+    for (int j = 1; j <= problem_.n; ++j) {
+      problem_.due[j] =
+          to_seconds(requests_[stop_ugv_[static_cast<std::size_t>(j - 1)]].deadline - now);
+    }
+  };
+  build(1.0);
+  schedule_ = scheduler_.solve(problem_);
+  if (config_.vmax_escalation && !schedule_.cost.feasible) {
+    double speedup = 1.0;
+    for (int k = 0; k < 100 && !schedule_.cost.feasible; ++k) {
+      speedup *= 1.5;
+      build(speedup);
+      schedule_ = scheduler_.solve(problem_);
+    }
+    build(1.0);  // report the order with the real speed
+    const StaticVector<std::uint8_t, kMaxStops> order = schedule_.order;
+    schedule_.cost = evaluate(problem_, {order.begin(), order.end()}, schedule_.arrival.data());
+  }
+  ++health_.schedules;
+  health_.schedules_exact += schedule_.exact;
+}
+
+bool UavSupervisorTask::choose_target(TimePoint now, Vec2& target) {
+  const Vec2 here = state_.pose.p.head<2>();
+  // Keep the stop we are at or nearly at, if it still wants us.
+  if (target_is_request_ && target_ugv_ >= 0) {
+    const Request& r = requests_[static_cast<std::size_t>(target_ugv_)];
+    if (r.active && !r.served && (r.support - here).norm() <= config_.commit_radius_m) {
+      target = r.support;
+      return true;
+    }
+  }
+  if (!schedule_.order.empty()) {
+    target_ugv_ = stop_ugv_[schedule_.order[0] - 1u];
+    target_is_request_ = true;
+    target = requests_[static_cast<std::size_t>(target_ugv_)].support;
+    return true;
+  }
+  // Nothing requested: visit the UGV not seen for the longest (keep every estimator fed).
+  target_is_request_ = false;
+  int best = -1;
+  for (RobotId id = 0; id < limits::kMaxUgvs; ++id) {
+    const Ugv& u = ugvs_[id];
+    if (!u.known || now - u.heard > config_.status_timeout ||
+        u.status.mode == msg::UgvMode::kArrived)
+      continue;
+    if (best < 0 || u.last_seen < ugvs_[static_cast<std::size_t>(best)].last_seen) best = id;
+  }
+  target_ugv_ = best;
+  if (best < 0) return false;
+  const auto& s = ugvs_[static_cast<std::size_t>(best)].status;
+  target = Vec2(s.position_m[0], s.position_m[1]);
+  return true;
+}
+
+void UavSupervisorTask::publish_plan(TimePoint now, bool changed) {
+  if (!changed && !elapsed(now, plan_published_, config_.plan_publish_period)) return;
+  plan_ = msg::SupportPlan{};
+  plan_.stamp = now;
+  plan_.uav_id = config_.id;
+  plan_.seq = static_cast<std::uint32_t>(health_.schedules);
+  plan_.total_lateness_s = schedule_.cost.lateness_s;
+  for (const std::uint8_t k : schedule_.order) {
+    msg::SupportStop& stop = plan_.stops[plan_.stop_count++];
+    stop.ugv_id = stop_ugv_[k - 1u];
+    const Vec2 sp = requests_[stop.ugv_id].support;
+    stop.point_m[0] = sp.x();
+    stop.point_m[1] = sp.y();
+    stop.point_m[2] = config_.flight.altitude_m;
+    stop.eta_s = schedule_.arrival[k];
+    stop.deadline_s = problem_.due[k];
+  }
+  plan_published_ = now;
+  (void)transport_.publish(plan_);
+}
+
+void UavSupervisorTask::scheduling_step(TimePoint now) {
+  read_requests(now);
+  read_statuses(now);
+  if (!have_state_) return;
+  const int previous_first = schedule_.order.empty() ? -1 : stop_ugv_[schedule_.order[0] - 1u];
+  solve(now);
+  const int first = schedule_.order.empty() ? -1 : stop_ugv_[schedule_.order[0] - 1u];
+  Vec2 target;
+  if (!choose_target(now, target)) {
+    mode_ = UavMode::kIdle;
+    publish_plan(now, previous_first != first);
+    return;
+  }
+  const Vec2 here = state_.pose.p.head<2>();
+  flight_.set_target(target, now, here, flight_layer_);
+  const bool there = (target - here).norm() <= config_.arrival_radius_m;
+  if (!there) {
+    hover_since_ = kNever;
+    mode_ = target_is_request_ ? UavMode::kTransit : UavMode::kIdle;
+  } else {
+    if (hover_since_ == kNever) hover_since_ = now;
+    mode_ = UavMode::kHover;
+    if (target_is_request_ && elapsed(now, hover_since_, config_.hover_timeout)) {
+      // The UGV keeps asking although we are there: give the others a turn.
+      Request& r = requests_[static_cast<std::size_t>(target_ugv_)];
+      r.served = true;
+      r.served_at = r.support;
+      ++health_.hover_timeouts;
+      hover_since_ = kNever;
+    }
+  }
+  publish_plan(now, previous_first != first);
+}
+
+}  // namespace colag::uav
