@@ -10,11 +10,12 @@ MapStore::MapStore(const MapStoreConfig& config) : config_(config) {
   make_disc(config_.predict_inflation_m, predict_disc_);
   state_.fill(CellState::kUnknown);
   plan_count_.fill(0);
-  predict_count_.fill(0);
+  near_occupied_.fill(0);
+  near_unknown_.fill(0);
   const auto& g = geometry();
   for (int y = 0; y < g.cells_y(); ++y) {
     for (int x = 0; x < g.cells_x(); ++x)
-      stamp({x, y}, predict_disc_, predict_count_, +1);
+      stamp({x, y}, predict_disc_, near_unknown_, +1);
   }
 }
 
@@ -50,9 +51,12 @@ void MapStore::set_cell(CellIndex c, CellState s) {
   ++counters_.cells_changed;
   if (old == CellState::kOccupied) stamp(c, plan_disc_, plan_count_, -1);
   if (s == CellState::kOccupied) stamp(c, plan_disc_, plan_count_, +1);
-  const bool was_blocking = old != CellState::kFree, blocking = s != CellState::kFree;
-  if (was_blocking && !blocking) stamp(c, predict_disc_, predict_count_, -1);
-  if (!was_blocking && blocking) stamp(c, predict_disc_, predict_count_, +1);
+  if (old == CellState::kOccupied) stamp(c, predict_disc_, near_occupied_, -1);
+  if (s == CellState::kOccupied) stamp(c, predict_disc_, near_occupied_, +1);
+  if (config_.unknown_blocks_prediction) {
+    if (old == CellState::kUnknown) stamp(c, predict_disc_, near_unknown_, -1);
+    if (s == CellState::kUnknown) stamp(c, predict_disc_, near_unknown_, +1);
+  }
   state_[i] = s;
 }
 
@@ -97,8 +101,26 @@ CellState MapStore::state(CellIndex c) const {
 bool MapStore::plan_blocked(CellIndex c) const {
   return !geometry().contains(c) || plan_count_[geometry().index(c)] > 0;
 }
+double MapStore::occupied_distance(const Vec2& p, double max_m) const {
+  const auto& g = geometry();
+  const CellIndex c = g.cell_of(p);
+  const int r = static_cast<int>(std::ceil(max_m / g.resolution())) + 1;
+  double best = max_m;
+  for (int dy = -r; dy <= r; ++dy) {
+    for (int dx = -r; dx <= r; ++dx) {
+      const CellIndex n{c.x + dx, c.y + dy};
+      if (!g.contains(n) || state_[g.index(n)] != CellState::kOccupied) continue;
+      // Distance from p to the cell's square.
+      const Vec2 lo = g.center_of(n) - Vec2::Constant(0.5 * g.resolution());
+      const Vec2 d = (lo - p).cwiseMax(p - (lo + Vec2::Constant(g.resolution()))).cwiseMax(0.0);
+      best = std::min(best, d.norm());
+    }
+  }
+  return best;
+}
+
 bool MapStore::predict_blocked(CellIndex c) const {
-  return !geometry().contains(c) || predict_count_[geometry().index(c)] > 0;
+  return !geometry().contains(c) || predict_blocked_at(geometry().index(c));
 }
 
 }  // namespace colag

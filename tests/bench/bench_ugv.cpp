@@ -47,7 +47,7 @@ Mat3 covariance_after_drifting() {
 void BM_PlanningCycle(benchmark::State& state) {
   auto& s = scene();
   auto planner = std::make_unique<Planner>();
-  const CollisionPredictor predictor({}, {});
+  CollisionPredictor predictor({}, {});
   Path path;
   Trajectory traj;
   Prediction prediction;
@@ -77,7 +77,7 @@ void BM_PredictionOnly(benchmark::State& state) {
   Trajectory traj;
   planner->plan(*s.map, Vec2(0, 16), Vec2(0, -16), {}, path);
   traj.build(path, 0.5, {});
-  const CollisionPredictor predictor({}, {});
+  CollisionPredictor predictor({}, {});
   Prediction prediction;
   std::size_t i = 0;
   for (auto _ : state) {

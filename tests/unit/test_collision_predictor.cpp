@@ -42,7 +42,7 @@ TEST(CollisionPredictor, NothingOnAFreeMapWithZeroCovariance) {
   ASSERT_TRUE(test::fill_map(*map, -3, -3, 13, 3, [](const Vec2&) { return CellState::kFree; }));
   PredictorConfig cfg;
   cfg.horizon_m = 20.0;
-  const CollisionPredictor predictor(cfg, forward_noise_only());
+  CollisionPredictor predictor(cfg, forward_noise_only());
   Prediction p;
   const Trajectory traj = straight_trajectory();
   predictor.predict({Vec2(0, 0.05), 0.0}, Mat3::Zero(), traj, 0, *map, {}, p);
@@ -58,7 +58,7 @@ TEST(CollisionPredictor, MeanOnlyHitsWhereTheInflatedUnknownBegins) {
   PredictorConfig cfg;
   cfg.horizon_m = 10.0;
   cfg.use_uncertainty = false;
-  const CollisionPredictor predictor(cfg, forward_noise_only());
+  CollisionPredictor predictor(cfg, forward_noise_only());
   Prediction p;
   predictor.predict({Vec2(0, 0.05), 0.0}, Mat3::Identity(), straight_trajectory(), 0, *map, {}, p);
   ASSERT_EQ(p.kind, CollisionKind::kMap);
@@ -74,7 +74,7 @@ TEST(CollisionPredictor, ThreeSigmaEllipseHitsEarlierAsHandCalculated) {
   PredictorConfig cfg;
   cfg.horizon_m = 10.0;
   const OdometryNoise noise = forward_noise_only();
-  const CollisionPredictor predictor(cfg, noise);
+  CollisionPredictor predictor(cfg, noise);
   Prediction p;
   Mat3 P = Mat3::Zero();
   P(0, 0) = P(1, 1) = 0.01;  // sigma 0.1 m
@@ -99,7 +99,7 @@ TEST(CollisionPredictor, AnotherRobotAheadIsARobotConflictNotAMapOne) {
   ASSERT_TRUE(test::fill_map(*map, -3, -3, 13, 3, [](const Vec2&) { return CellState::kFree; }));
   PredictorConfig cfg;
   cfg.horizon_m = 10.0;
-  const CollisionPredictor predictor(cfg, forward_noise_only());
+  CollisionPredictor predictor(cfg, forward_noise_only());
   const OtherRobot other{Vec2(4.0, 0.0), 0.75};
   Prediction p;
   predictor.predict({Vec2(0, 0.05), 0.0}, Mat3::Zero(), straight_trajectory(), 0, *map, {&other, 1},
@@ -108,11 +108,53 @@ TEST(CollisionPredictor, AnotherRobotAheadIsARobotConflictNotAMapOne) {
   EXPECT_NEAR(p.point.x(), 3.3, 0.11);  // where the discs first overlap
 }
 
-TEST(CollisionPredictor, AnEllipseAlreadyTouchingMeansNow) {
+TEST(CollisionPredictor, GoingFurtherIntoUnknownIsACollisionAtTheFirstStep) {
+  // The robot's ellipse already touches the inflated unknown: that is excused (it is there),
+  // but the very next step touches new unknown-blocked cells.
   auto map = map_with_unknown_ahead();
-  const CollisionPredictor predictor(PredictorConfig{}, forward_noise_only());
+  CollisionPredictor predictor(PredictorConfig{}, forward_noise_only());
   Prediction p;
-  predictor.predict({Vec2(2.9, 0.05), 0.0}, Mat3::Zero(), straight_trajectory(), 29, *map, {}, p);
+  predictor.predict({Vec2(2.75, 0.05), 0.0}, Mat3::Zero(), straight_trajectory(), 27, *map, {}, p);
   ASSERT_EQ(p.kind, CollisionKind::kMap);
-  EXPECT_EQ(p.time_s, 0.0);
+  EXPECT_NEAR(p.time_s, 0.2, 1e-9);  // with the 0.2 s step subtracted: stop now
+}
+
+TEST(CollisionPredictor, ARobotAlreadyInsideTheInflationMayLeaveButNotGoCloser) {
+  // A box at x in [3.0, 3.5]; the robot's centre is at x = 2.82, inside the box's 0.25 m CP
+  // inflation (it braked there while the box was still unknown): physically 0.07 m clear of the
+  // cell edge (its body is narrower than the inflation's worst case of cell quantisation).
+  auto map = std::make_unique<MapStore>();
+  ASSERT_TRUE(test::fill_map(*map, -3, -3, 9, 3, [](const Vec2& p) {
+    return p.x() > 3.0 && p.x() < 3.5 && std::abs(p.y()) < 1.0 ? CellState::kOccupied
+                                                               : CellState::kFree;
+  }));
+  ASSERT_TRUE(map->predict_blocked(Vec2(2.82, 0.05)));
+  PredictorConfig cfg;
+  cfg.horizon_m = 3.0;
+  CollisionPredictor predictor(cfg, forward_noise_only());
+  Prediction p;
+  const auto line = [](Vec2 a, Vec2 b) {
+    Path path;
+    (void)path.waypoints.push_back(a);
+    (void)path.waypoints.push_back(b);
+    Trajectory t;
+    EXPECT_TRUE(t.build(path, 0.0, {}));
+    return t;
+  };
+  const Vec2 here(2.82, 0.05);
+  predictor.predict({here, M_PI}, Mat3::Identity() * 1e-4, line(here, Vec2(-1.0, 0.05)), 0, *map,
+                    {}, p);
+  EXPECT_EQ(p.kind, CollisionKind::kNone) << "backing away from the box must be allowed";
+  predictor.predict({here, 0.0}, Mat3::Identity() * 1e-4, line(here, Vec2(5.0, 0.05)), 0, *map, {},
+                    p);
+  ASSERT_EQ(p.kind, CollisionKind::kMap) << "driving towards it must not be";
+  EXPECT_LE(p.time_s, 0.6);
+  // Sliding along the box face while edging away is allowed (exactly sideways is not: the
+  // ellipse grows, so its worst case comes closer); angling in is not.
+  predictor.predict({here, M_PI / 2}, Mat3::Identity() * 1e-4, line(here, Vec2(2.62, 0.9)), 0, *map,
+                    {}, p);
+  EXPECT_EQ(p.kind, CollisionKind::kNone);
+  predictor.predict({here, 1.2}, Mat3::Identity() * 1e-4, line(here, Vec2(3.1, 0.9)), 0, *map, {},
+                    p);
+  EXPECT_EQ(p.kind, CollisionKind::kMap);
 }

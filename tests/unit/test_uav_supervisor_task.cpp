@@ -214,7 +214,14 @@ TEST(UavSupervisorTask, HoverTimeoutGivesOthersATurn) {
     rig.request(1, b, 50.0);
     rig.ex.run_until(rig.ex.now() + 1s);
   }
-  EXPECT_LT(rig.distance_to(b), 1.0);
+  EXPECT_LT(rig.distance_to(b), 3.0);  // circling b at 2 m
+  EXPECT_EQ(rig.uav->mode(), UavMode::kHover);
+  // UGV 0's turn comes back after the cooldown (20 s): it is not abandoned.
+  for (int i = 0; i < 30 && rig.distance_to(a) > 3.0; ++i) {
+    rig.request(0, a, 3.0);
+    rig.ex.run_until(rig.ex.now() + 1s);
+  }
+  EXPECT_LT(rig.distance_to(a), 3.0);
 }
 
 TEST(UavSupervisorTask, MapPatchesReachEveryUgvAtItsOwnRate) {

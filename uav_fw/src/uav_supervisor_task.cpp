@@ -176,6 +176,7 @@ void UavSupervisorTask::read_requests(TimePoint now) {
     if (r.served && (r.support - r.served_at).norm() > config_.served_moved_m) r.served = false;
   }
   for (Request& r : requests_) {
+    if (r.served && now >= r.served_until) r.served = false;  // its turn again
     if (r.active && now - r.heard > config_.request_timeout)
       r.active = false;  // heartbeats stopped
   }
@@ -252,7 +253,8 @@ bool UavSupervisorTask::choose_target(TimePoint now, Vec2& target) {
   // Keep the stop we are at or nearly at, if it still wants us.
   if (target_is_request_ && target_ugv_ >= 0) {
     const Request& r = requests_[static_cast<std::size_t>(target_ugv_)];
-    if (r.active && !r.served && (r.support - here).norm() <= config_.commit_radius_m) {
+    if (r.active && !r.served &&
+        (at_stop_ || (r.support - here).norm() <= config_.commit_radius_m)) {
       target = r.support;
       return true;
     }
@@ -275,8 +277,13 @@ bool UavSupervisorTask::choose_target(TimePoint now, Vec2& target) {
   }
   target_ugv_ = best;
   if (best < 0) return false;
+  // Lead it: a little ahead towards its goal, mapping what it is about to drive into.
   const auto& s = ugvs_[static_cast<std::size_t>(best)].status;
-  target = Vec2(s.position_m[0], s.position_m[1]);
+  const Vec2 p(s.position_m[0], s.position_m[1]), goal(s.goal_m[0], s.goal_m[1]);
+  const Vec2 to_goal = goal - p;
+  target = p;
+  if (to_goal.norm() > 1e-3)
+    target += std::min(config_.lead_m, to_goal.norm()) * to_goal.normalized();
   return true;
 }
 
@@ -315,22 +322,34 @@ void UavSupervisorTask::scheduling_step(TimePoint now) {
     return;
   }
   const Vec2 here = state_.pose.p.head<2>();
-  flight_.set_target(target, now, here, flight_layer_);
-  const bool there = (target - here).norm() <= config_.arrival_radius_m;
-  if (!there) {
-    hover_since_ = kNever;
-    mode_ = target_is_request_ ? UavMode::kTransit : UavMode::kIdle;
-  } else {
-    if (hover_since_ == kNever) hover_since_ = now;
+  // A different stop (or the same UGV's point moved): fly there first.
+  if (!target_is_request_ || (target - stop_point_).norm() > config_.served_moved_m)
+    at_stop_ = false;
+  stop_point_ = target;
+  if (target_is_request_ && !at_stop_ && (target - here).norm() <= config_.arrival_radius_m) {
+    at_stop_ = true;
+    hover_since_ = now;
+    orbit_phase_ = std::atan2(here.y() - target.y(), here.x() - target.x());
+  }
+  if (at_stop_) {
     mode_ = UavMode::kHover;
-    if (target_is_request_ && elapsed(now, hover_since_, config_.hover_timeout)) {
+    orbit_phase_ +=
+        config_.orbit_speed_mps / config_.orbit_radius_m * 0.1;  // this loop runs at 10 Hz
+    const Vec2 orbit =
+        target + config_.orbit_radius_m * Vec2(std::cos(orbit_phase_), std::sin(orbit_phase_));
+    flight_.set_target(orbit, now, here, flight_layer_);
+    if (elapsed(now, hover_since_, config_.hover_timeout)) {
       // The UGV keeps asking although we are there: give the others a turn.
       Request& r = requests_[static_cast<std::size_t>(target_ugv_)];
       r.served = true;
       r.served_at = r.support;
+      r.served_until = now + config_.served_cooldown;
       ++health_.hover_timeouts;
-      hover_since_ = kNever;
+      at_stop_ = false;
     }
+  } else {
+    mode_ = target_is_request_ ? UavMode::kTransit : UavMode::kIdle;
+    flight_.set_target(target, now, here, flight_layer_);
   }
   publish_plan(now, previous_first != first);
 }

@@ -1,23 +1,34 @@
 #include "colag/ugv/collision_predictor.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace colag::ugv {
 
 CollisionKind CollisionPredictor::check(const Ellipse& e, const MapStore& map,
-                                        std::span<const OtherRobot> others) const {
+                                        std::span<const OtherRobot> others,
+                                        double closest_allowed_m) const {
   const auto& g = map.geometry();
-  const bool hit =
-      any_cell_touching(g, e, [&](CellIndex c) { return map.predict_blocked_at(g.index(c)); });
-  if (hit) return CollisionKind::kMap;
   // Outside the grid counts as unknown, hence blocked.
   const double reach = std::sqrt(std::max(e.M(0, 0), e.M(1, 1)));
   if (!g.contains(Vec2(e.center + Vec2(reach, reach))) ||
       !g.contains(Vec2(e.center - Vec2(reach, reach)))) {
     return CollisionKind::kMap;
   }
-  if (others.empty()) return CollisionKind::kNone;
-  const double a = e.axes().a_m;
+  bool near_occupied = false;
+  const bool near_unknown = any_cell_touching(g, e, [&](CellIndex c) {
+    const auto i = static_cast<std::uint32_t>(g.index(c));
+    if (!map.predict_blocked_at(i) || std::binary_search(excused_.begin(), excused_.end(), i))
+      return false;
+    near_occupied = near_occupied || map.near_occupied_at(i);
+    return map.near_unknown_at(i);
+  });
+  if (near_unknown) return CollisionKind::kMap;
+  const double a = (near_occupied || !others.empty()) ? e.axes().a_m : 0.0;
+  // Known obstacles: never closer (in the worst case of the ellipse) than the robot is now.
+  if (near_occupied && map.occupied_distance(e.center, kDistanceSearch_m) - a < closest_allowed_m) {
+    return CollisionKind::kMap;
+  }
   for (const OtherRobot& o : others) {
     if ((o.p - e.center).norm() <= a + o.radius_m) return CollisionKind::kRobot;
   }
@@ -26,15 +37,32 @@ CollisionKind CollisionPredictor::check(const Ellipse& e, const MapStore& map,
 
 void CollisionPredictor::predict(const Pose2& pose, const Mat3& covariance, const Trajectory& traj,
                                  std::size_t progress, const MapStore& map,
-                                 std::span<const OtherRobot> others, Prediction& out) const {
+                                 std::span<const OtherRobot> others, Prediction& out) {
   out.kind = CollisionKind::kNone;
   out.ellipses.clear();
   const double k = config_.use_uncertainty ? config_.k_sigma : 0.0;
   Mat3 P = config_.use_uncertainty ? covariance : Mat3::Zero();
+  const auto& g = map.geometry();
+
+  // Now: the blocked cells the ellipse overlaps already are excused (collected in the
+  // ascending order the rasterisation visits them; too many to excuse: a collision now), and
+  // the robot's worst-case distance to the nearest occupied cell is the floor from here on.
+  excused_.clear();
+  const Ellipse now_e = sigma_ellipse(pose.p, P.topLeftCorner<2, 2>(), k);
+  const bool overflow = any_cell_touching(g, now_e, [&](CellIndex c) {
+    const auto i = static_cast<std::uint32_t>(g.index(c));
+    return map.predict_blocked_at(i) && !excused_.push_back(i);
+  });
+  const double inflation = map.config().predict_inflation_m;
+  const double floor_now = map.occupied_distance(pose.p, kDistanceSearch_m) - now_e.axes().a_m;
+  // Outside any occupied cell's inflation nothing changes: the floor is the inflation itself.
+  const double closest_allowed = std::min(floor_now, inflation) - 1e-3;
+
   const auto test = [&](const Vec2& centre, double t, double heading) {
     const Ellipse e = sigma_ellipse(centre, P.topLeftCorner<2, 2>(), k);
     (void)out.ellipses.push_back(e);
-    const CollisionKind kind = check(e, map, others);
+    const CollisionKind kind =
+        overflow ? CollisionKind::kMap : check(e, map, others, closest_allowed);
     if (kind == CollisionKind::kNone) return false;
     out.kind = kind;
     out.point = centre;
@@ -43,7 +71,6 @@ void CollisionPredictor::predict(const Pose2& pose, const Mat3& covariance, cons
         centre - config_.support_back_off_m * Vec2(std::cos(heading), std::sin(heading));
     return true;
   };
-  // Now, at the estimated pose.
   if (test(pose.p, 0.0, pose.yaw_rad) || traj.empty()) return;
 
   const std::size_t start = std::min(progress, traj.size() - 1);

@@ -10,6 +10,14 @@
 
 namespace colag {
 
+// floor(x) as an int, without a libm call (the baseline x86-64 target has no rounding
+// instruction) and without undefined behaviour: x is clamped to +-1e9 first (NaN gives -1e9).
+constexpr int floor_to_int(double x) {
+  x = x > -1e9 ? (x < 1e9 ? x : 1e9) : -1e9;
+  const int i = static_cast<int>(x);
+  return i - (static_cast<double>(i) > x ? 1 : 0);
+}
+
 struct CellIndex {
   int x = 0;
   int y = 0;
@@ -39,8 +47,7 @@ class GridGeometry2d {
   }
   bool contains(const Vec2& p) const { return contains(cell_of(p)); }
   CellIndex cell_of(const Vec2& p) const {
-    return {static_cast<int>(std::floor((p.x() - ox_) * inv_res_)),
-            static_cast<int>(std::floor((p.y() - oy_) * inv_res_))};
+    return {floor_to_int((p.x() - ox_) * inv_res_), floor_to_int((p.y() - oy_) * inv_res_)};
   }
   Vec2 center_of(CellIndex c) const { return {ox_ + (c.x + 0.5) * res_, oy_ + (c.y + 0.5) * res_}; }
   constexpr std::size_t index(CellIndex c) const {

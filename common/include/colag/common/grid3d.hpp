@@ -36,9 +36,8 @@ class GridGeometry3d {
     return v.x >= 0 && v.y >= 0 && v.z >= 0 && v.x < nx_ && v.y < ny_ && v.z < nz_;
   }
   VoxelIndex voxel_of(const Vec3& p) const {
-    return {static_cast<int>(std::floor((p.x() - ox_) * inv_res_)),
-            static_cast<int>(std::floor((p.y() - oy_) * inv_res_)),
-            static_cast<int>(std::floor((p.z() - oz_) * inv_res_))};
+    return {floor_to_int((p.x() - ox_) * inv_res_), floor_to_int((p.y() - oy_) * inv_res_),
+            floor_to_int((p.z() - oz_) * inv_res_)};
   }
   Vec3 center_of(VoxelIndex v) const {
     return {ox_ + (v.x + 0.5) * res_, oy_ + (v.y + 0.5) * res_, oz_ + (v.z + 0.5) * res_};
@@ -79,8 +78,9 @@ bool any_voxel_index_on_segment(const GridGeometry3d& g, const Vec3& a, const Ve
                         std::ptrdiff_t stride) {
     if (dk == 0.0) return Axis{0, kInf, kInf, 0};
     const bool up = dk > 0;
-    return Axis{up ? stride : -stride, (origin + (cell + (up ? 1 : 0)) * res - ak) / dk,
-                res / std::abs(dk), up ? size - 1 - cell : cell};
+    const double inv = 1.0 / dk;  // one division per axis and ray
+    return Axis{up ? stride : -stride, (origin + (cell + (up ? 1 : 0)) * res - ak) * inv,
+                res * std::abs(inv), up ? size - 1 - cell : cell};
   };
   Axis x = axis(d.x(), a.x(), g.origin_x(), v0.x, g.cells_x(), 1);
   Axis y = axis(d.y(), a.y(), g.origin_y(), v0.y, g.cells_y(), g.cells_x());

@@ -44,7 +44,9 @@ inline constexpr std::size_t kUavOdometryHistory = 64;  // UGV side, for RPE tim
 inline constexpr std::size_t kCanRxQueue = 64;
 
 // --- Runtime -----------------------------------------------------------------------------------
-inline constexpr std::size_t kMaxTasksPerExecutor = 16;
+// A board runs a handful of tasks; the host simulator puts a whole fleet in one table
+// (16 UGVs x 2 loops + the UAV's 4 + world, transport, monitor).
+inline constexpr std::size_t kMaxTasksPerExecutor = 48;
 inline constexpr std::size_t kMaxSubscriptions = 128;        // per transport instance
 inline constexpr std::size_t kLoopbackMaxInFlight = 512;     // samples held by the loopback
 inline constexpr std::size_t kLoopbackMaxDeliveries = 4096;  // (sample, subscriber) pairs pending

@@ -21,6 +21,9 @@ namespace colag {
 struct MapStoreConfig {
   double plan_inflation_m = 0.4;      // robot radius + clearance kept by the planner
   double predict_inflation_m = 0.25;  // robot radius: a 3-sigma ellipse touching means contact
+  // Unknown cells block the CP-Map (a blind robot). False for a robot that sees for itself
+  // (the self-perception baseline): only occupied cells block.
+  bool unknown_blocks_prediction = true;
 };
 
 struct MapStoreCounters {
@@ -47,7 +50,15 @@ class MapStore {
   bool predict_blocked(CellIndex c) const;
   // By row-major index of an in-grid cell (the planner's inner loop).
   bool plan_blocked_at(std::size_t i) const { return plan_count_[i] > 0; }
-  bool predict_blocked_at(std::size_t i) const { return predict_count_[i] > 0; }
+  bool predict_blocked_at(std::size_t i) const {
+    return near_occupied_[i] > 0 || near_unknown_[i] > 0;
+  }
+  // The two reasons a CP-Map cell is blocked: an occupied or an unknown cell within the radius.
+  bool near_occupied_at(std::size_t i) const { return near_occupied_[i] > 0; }
+  bool near_unknown_at(std::size_t i) const { return near_unknown_[i] > 0; }
+  // Distance from p to the nearest occupied cell's square, searching up to max_m (returned if
+  // none is closer).
+  double occupied_distance(const Vec2& p, double max_m) const;
   bool plan_blocked(const Vec2& p) const { return plan_blocked(geometry().cell_of(p)); }
   bool predict_blocked(const Vec2& p) const { return predict_blocked(geometry().cell_of(p)); }
 
@@ -65,7 +76,8 @@ class MapStore {
   MapStoreCounters counters_;
   std::array<CellState, limits::kGridCells2d> state_;
   Counts plan_count_;     // occupied cells within plan_inflation_m
-  Counts predict_count_;  // occupied or unknown cells within predict_inflation_m
+  Counts near_occupied_;  // occupied cells within predict_inflation_m
+  Counts near_unknown_;   // unknown cells within predict_inflation_m (if they block prediction)
   Disc plan_disc_;
   Disc predict_disc_;
   PatchCells scratch_;

@@ -13,6 +13,7 @@
 #include <cstdint>
 
 #include "colag/common/grid3d.hpp"
+#include "colag/common/static_vector.hpp"
 #include "colag/hal/lidar.hpp"
 
 namespace colag::uav {
@@ -59,7 +60,8 @@ class Mapper {
  private:
   static constexpr std::int8_t kUnknown = -128;
   void trace(const Vec3& origin, const Vec3& end, bool hit);
-  bool update(std::size_t i, std::int8_t delta);  // false if already updated in this scan
+  // Applies `delta` once per scan (later calls are ignored); true if the voxel changed.
+  bool update(std::size_t i, std::int8_t delta);
 
   MapperConfig config_;
   std::int8_t hit_, miss_, min_, max_, occupied_;
@@ -70,6 +72,11 @@ class Mapper {
   std::array<std::uint64_t, (limits::kGridCells3d + 63) / 64> touched_;
   std::array<std::uint64_t, (limits::kGridCells3d + 63) / 64>
       ended_;  // a ray of this scan ended here
+  struct Ray {
+    Vec3 end = Vec3::Zero();  // world frame, cut at max range
+    bool hit = false;         // ends on a return
+  };
+  StaticVector<Ray, limits::kMaxLidarPoints> rays_;  // the scan being inserted
 };
 
 }  // namespace colag::uav

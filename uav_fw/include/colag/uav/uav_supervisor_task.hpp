@@ -36,9 +36,16 @@ struct UavSupervisorConfig {
   bool vmax_escalation = false;
   Pose3 lidar_mount;              // LiDAR frame -> UAV body
   double arrival_radius_m = 1.0;  // at a support point when this close (2-D)
+  // At a support point the UAV circles it at this radius and speed instead of hovering still:
+  // the LiDAR sees nothing steeper than -25 deg, so a still UAV leaves a ~1.7 m blind disc
+  // exactly where it is meant to look. Circling, every cell near the point is seen from a side.
+  double orbit_radius_m = 2.0;
+  double orbit_speed_mps = 1.5;
+  double lead_m = 3.0;  // idle: fly this far ahead of the UGV, towards its goal
   Duration hover_timeout = std::chrono::seconds(10);
   double served_moved_m = 1.0;  // a timed-out request returns when its point moves this much
-  Duration request_timeout = std::chrono::seconds(5);  // UGVs heartbeat every second
+  Duration served_cooldown = std::chrono::seconds(20);  // ... or after this long
+  Duration request_timeout = std::chrono::seconds(5);   // UGVs heartbeat every second
   Duration status_timeout = std::chrono::seconds(5);
   double commit_radius_m = 3.0;     // this close to the current stop, the schedule keeps it
   double uav_radius_m = 0.3;        // flight-layer inflation
@@ -101,7 +108,8 @@ class UavSupervisorTask {
   };
   struct Request {
     bool active = false;
-    bool served = false;  // hovered there until the timeout: skip until it moves
+    bool served = false;  // hovered there until the timeout: skip for a while
+    TimePoint served_until{};
     std::uint32_t seq = 0;
     TimePoint heard{};
     TimePoint deadline{};
@@ -157,6 +165,9 @@ class UavSupervisorTask {
   std::array<Ugv, limits::kMaxUgvs> ugvs_{};
   int target_ugv_ = -1;  // UGV whose support point we fly to, -1: none
   bool target_is_request_ = false;
+  bool at_stop_ = false;  // reached the current support point: circling it
+  Vec2 stop_point_ = Vec2::Zero();
+  double orbit_phase_ = 0.0;
   TimePoint hover_since_ = kNever;
   UavMode mode_ = UavMode::kIdle;
   msg::SupportPlan plan_;

@@ -5,6 +5,13 @@
 // that touches a blocked cell (or another UGV's disc) is the predicted collision: its centre
 // p_pc, the time t_pc to reach it, and the support point p_ps backed off along the planned
 // velocity (where the UAV's sensors cover the danger).
+// A collision means getting into danger, not being near it already (otherwise a robot that
+// braked just inside an inflated area, a box revealed where unknown was, could never move
+// again, not even away): the blocked cells the ellipse overlaps now are excused; touching any
+// other cell blocked by unknown is a collision (only the UAV can clear it); near a known
+// obstacle, a step is a collision only if its worst case (centre distance minus the ellipse's
+// semi-major axis) comes closer to an occupied cell than the robot is now, or than the
+// inflation radius when it is outside it.
 #include <cstdint>
 #include <span>
 
@@ -49,17 +56,22 @@ class CollisionPredictor {
   // `pose`, `covariance`: the EKF now; the robot is at trajectory sample `progress`.
   void predict(const Pose2& pose, const Mat3& covariance, const Trajectory& trajectory,
                std::size_t progress, const MapStore& map, std::span<const OtherRobot> others,
-               Prediction& out) const;
+               Prediction& out);
 
   const PredictorConfig& config() const { return config_; }
 
  private:
-  // Which obstacle, if any, the ellipse touches.
-  CollisionKind check(const Ellipse& e, const MapStore& map,
-                      std::span<const OtherRobot> others) const;
+  // Which obstacle, if any, the ellipse touches: a blocked cell not in excused_ that is near
+  // unknown, or near occupied with the ellipse closer than `closest_allowed_m` to it.
+  CollisionKind check(const Ellipse& e, const MapStore& map, std::span<const OtherRobot> others,
+                      double closest_allowed_m) const;
 
+  static constexpr std::size_t kMaxExcused = 8192;
+  static constexpr double kDistanceSearch_m = 1.0;
   PredictorConfig config_;
   OdometryNoise noise_;
+  // Blocked cells under the current ellipse (ascending indices): touching them is not news.
+  StaticVector<std::uint32_t, kMaxExcused> excused_;
 };
 
 }  // namespace colag::ugv

@@ -1,0 +1,24 @@
+#include "colag/mock/sim_can_link.hpp"
+
+namespace colag::mock {
+
+Status SimCanLink::End::send(const hal::CanFrame& frame, TimePoint) {
+  if (link_.down_) {
+    ++stats_.tx_failures;
+    return {Errc::kUnavailable, "CAN link down"};
+  }
+  End& peer = side_ == 0 ? link_.motor_ : link_.board_;
+  hal::CanFrame f = frame;
+  f.stamp = link_.clock_.now();
+  if (peer.inbox_.push_overwrite(f)) ++peer.stats_.rx_overruns;
+  ++stats_.tx_frames;
+  return Status::ok();
+}
+
+bool SimCanLink::End::receive(hal::CanFrame& out) {
+  if (!inbox_.pop_front(out)) return false;
+  ++stats_.rx_frames;
+  return true;
+}
+
+}  // namespace colag::mock
