@@ -12,6 +12,7 @@ MapStore::MapStore(const MapStoreConfig& config) : config_(config) {
   plan_count_.fill(0);
   near_occupied_.fill(0);
   near_unknown_.fill(0);
+  if (!config_.unknown_blocks_prediction) return;
   const auto& g = geometry();
   for (int y = 0; y < g.cells_y(); ++y) {
     for (int x = 0; x < g.cells_x(); ++x)

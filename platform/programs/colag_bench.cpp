@@ -1,12 +1,14 @@
 // colag_bench: measurements of the whole system. Modes:
 //   colag_bench scheduler --instance FILE   solve a TSPTW instance (standard matrix format)
 //                                           with the UAV's scheduler and print the tour
-// (The paper's tables, run over seeds and cores, arrive with the mission runner.)
+//   colag_bench tables [--seeds K] [--jobs J] [--table 1|2|all] [--csv FILE] [--quick]
+//                                           the paper's Table I and II, measured
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
 #include <memory>
 
+#include "bench_tables.hpp"
 #include "tsptw_instance.hpp"
 
 using namespace colag;
@@ -52,7 +54,20 @@ int main(int argc, char** argv) {
       ->required();
   sched->add_option("--exact-max", exact_max, "largest instance solved exactly (0: heuristic only)")
       ->check(CLI::Range(0, uav::kExactMaxStops));
+  auto* tables = app.add_subcommand(
+      "tables", "run the paper's Table I and II (missions over seeds, in parallel)");
+  programs::TablesOptions topt;
+  tables->add_option("--seeds", topt.seeds, "seeds per configuration")->check(CLI::Range(1, 100));
+  tables->add_option("--jobs", topt.jobs, "missions at once")->check(CLI::Range(1, 64));
+  tables->add_option("--table", topt.tables, "1, 2 or all")
+      ->check(CLI::IsMember({"1", "2", "all"}));
+  tables->add_option("--csv", topt.csv, "per-mission results");
+  tables->add_option("--max-time", topt.max_time_s, "simulated seconds per mission")
+      ->check(CLI::PositiveNumber);
+  tables->add_option("--sim", topt.sim, "colag_sim to run (default: next to colag_bench)");
+  tables->add_flag("--quick", topt.quick, "one small configuration, one seed (a smoke run)");
   CLI11_PARSE(app, argc, argv);
   if (*sched) return run_scheduler(instance, exact_max);
+  if (*tables) return programs::run_tables(topt);
   return 2;
 }

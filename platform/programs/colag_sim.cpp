@@ -52,7 +52,7 @@ int main(int argc, char** argv) {
   CLI::App app{"colag_sim: one simulated ColAG mission (UAV + blind UGVs) on the host"};
   mission::MissionConfig cfg;
   std::string map_file, ablation = "none", json_path, png_path;
-  bool quiet = false;
+  bool quiet = false, verbose = false;
   auto* scenario =
       app.add_option("--scenario", cfg.scenario, "generated map: sparse (40 boxes) or dense (80)")
           ->check(CLI::IsMember({"sparse", "dense"}));
@@ -74,6 +74,7 @@ int main(int argc, char** argv) {
   app.add_option("--json", json_path, "write the metrics as JSON to this file");
   app.add_option("--png", png_path, "draw the mission into this PNG file");
   app.add_flag("--quiet", quiet, "no progress bar, no table");
+  app.add_flag("--verbose", verbose, "also list every stop of every UGV (when, where, why)");
   CLI11_PARSE(app, argc, argv);
   if (!map_file.empty()) {
     cfg.scenario = "file";
@@ -92,7 +93,8 @@ int main(int argc, char** argv) {
   }
   mission::MissionTrace trace;
   std::string error;
-  const auto outcome = mission::run_mission(cfg, png_path.empty() ? nullptr : &trace, &error);
+  const auto outcome =
+      mission::run_mission(cfg, png_path.empty() && !verbose ? nullptr : &trace, &error);
   if (bar) std::fprintf(stderr, "\r%*s\r", 60, "");
   if (!outcome) {
     std::fprintf(stderr, "colag_sim: %s\n", error.c_str());
@@ -106,6 +108,14 @@ int main(int argc, char** argv) {
                 mission::to_string(cfg.ablation),
                 cfg.self_perception ? ", self-perception baseline" : "");
     print_table(o);
+  }
+  if (verbose) {
+    std::printf("\nstops (UGV, from - to, where, why)\n");
+    for (const auto& s : trace.stops) {
+      std::printf("  %2d  %7.1f - %7.1f s  (%6.2f, %6.2f)  %s\n", s.ugv, s.from_s, s.to_s,
+                  s.where.x(), s.where.y(),
+                  s.for_support ? "waiting for support" : "waiting for the first relative pose");
+    }
   }
   if (!json_path.empty()) {
     std::ofstream(json_path) << mission::to_json(o) << "\n";

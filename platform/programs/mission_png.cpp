@@ -73,8 +73,8 @@ bool draw_mission(const mission::MissionTrace& t, const mission::MissionOutcome&
 
   // Legend and metrics.
   const int y0 = side + 22;
-  const auto text = [&](int x, int y, const std::string& s, cv::Scalar c = {0, 0, 0}) {
-    cv::putText(img, s, {x, y}, cv::FONT_HERSHEY_SIMPLEX, 0.5, c, 1, cv::LINE_AA);
+  const auto text = [&](int x, int y, const std::string& str, cv::Scalar c = {0, 0, 0}) {
+    cv::putText(img, str, {x, y}, cv::FONT_HERSHEY_SIMPLEX, 0.5, c, 1, cv::LINE_AA);
   };
   char line[256];
   std::snprintf(line, sizeof line, "%s map, %zu UGVs, seed %llu, ablation %s%s",
@@ -84,18 +84,19 @@ bool draw_mission(const mission::MissionTrace& t, const mission::MissionOutcome&
                 o.config.self_perception ? ", self-perception" : "");
   text(10, y0, line);
   std::snprintf(line, sizeof line,
-                "reach %.1f s   waiting %.2f s (max %.2f)   UGV path %.1f m   UAV path %.1f m   "
-                "collisions %d",
+                "reach %.1f s   waiting %.2f s (max %.2f)   UGV path %.1f m   UAV path %.1f m",
                 o.reach_time_s, o.waiting_time_s, o.max_waiting_time_s, o.ugv_traj_length_m,
-                o.uav_traj_length_m, o.collisions);
-  text(10, y0 + 24, line, o.collisions > 0 ? cv::Scalar(0, 0, 255) : cv::Scalar(0, 0, 0));
-  text(10, y0 + 52,
-       "thick line: true UGV path   dots: its estimate   ellipses: 3-sigma every 5 s   x: support "
-       "point");
-  text(10, y0 + 74,
-       "black line: UAV   dark squares: obstacles   light grey: never seen by the UAV   red: "
-       "collision");
-  text(10, y0 + 96, "circle: start   square: goal");
+                o.uav_traj_length_m);
+  text(10, y0 + 22, line);
+  std::snprintf(
+      line, sizeof line, "collisions %d   %s", o.collisions,
+      o.all_reached ? "all UGVs reached their goals" : "NOT all UGVs reached their goals");
+  text(10, y0 + 44, line,
+       o.collisions > 0 || !o.all_reached ? cv::Scalar(0, 0, 255) : cv::Scalar(0, 0, 0));
+  text(10, y0 + 70, "thick line: true UGV path   dots: its estimate   ellipses: 3-sigma every 5 s");
+  text(10, y0 + 92,
+       "x: support point   black line: UAV   dark squares: obstacles   red: collision");
+  text(10, y0 + 114, "light grey: never seen by the UAV   circle: start   square: goal");
   try {
     if (!cv::imwrite(path, img)) {
       error = "cannot write " + path;

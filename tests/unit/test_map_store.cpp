@@ -132,3 +132,17 @@ TEST_F(MapStoreTest, RejectsEveryMalformedPatchWithoutTouchingTheMap) {
   EXPECT_TRUE(map->apply(good));
   EXPECT_EQ(map->state(g.cell_of(Vec2(1.05, 1.05))), CellState::kFree);
 }
+
+TEST(MapStoreOptions, WhenUnknownDoesNotBlockOnlyOccupiedCellsBlockPrediction) {
+  MapStoreConfig cfg;
+  cfg.unknown_blocks_prediction = false;  // a robot that sees for itself
+  auto map = std::make_unique<MapStore>(cfg);
+  EXPECT_FALSE(map->predict_blocked(Vec2(0.0, 0.0)));  // unknown, and that is fine
+  ASSERT_TRUE(test::fill_map(*map, -2, -2, 2, 2, [](const Vec2& p) {
+    return (p - Vec2(0.05, 0.05)).norm() < 0.01 ? CellState::kOccupied : CellState::kUnknown;
+  }));
+  EXPECT_TRUE(map->predict_blocked(Vec2(0.25, 0.05)));
+  EXPECT_FALSE(map->predict_blocked(Vec2(1.0, 1.0)));
+  EXPECT_FALSE(
+      map->near_unknown_at(map->geometry().index(map->geometry().cell_of(Vec2(1.0, 1.0)))));
+}

@@ -286,6 +286,7 @@ Result<MissionOutcome> run_mission(const MissionConfig& cfg, MissionTrace* trace
   out.ugvs.resize(ugvs.size());
   const TimePoint end = time_at_seconds(cfg.max_time_s);
   int tick = 0;
+  std::vector<int> open_stops(ugvs.size(), -1);  // index of each UGV's current stop in the trace
   while (ex->now() < end) {
     ex->run_until(ex->now() + 100ms);
     ++tick;
@@ -296,6 +297,20 @@ Result<MissionOutcome> run_mission(const MissionConfig& cfg, MissionTrace* trace
       UgvOutcome& o = out.ugvs[i];
       const mock::UgvBody& body = world->ugv(static_cast<int>(i));
       if (task.mode() == msg::UgvMode::kWaitingForInit) o.init_wait_s += 0.1;
+      if (trace != nullptr) {
+        const bool stopped = task.mode() == msg::UgvMode::kWaitingForSupport ||
+                             task.mode() == msg::UgvMode::kWaitingForInit;
+        const bool for_support = task.mode() == msg::UgvMode::kWaitingForSupport;
+        auto& open = open_stops[i];
+        if (stopped && open < 0) {
+          open = static_cast<int>(trace->stops.size());
+          trace->stops.push_back({static_cast<int>(i), t - 0.1, t, body.pose().p, for_support});
+        } else if (stopped) {
+          trace->stops[static_cast<std::size_t>(open)].to_s = t;
+        } else {
+          open = -1;
+        }
+      }
       const bool arrived = task.mode() == msg::UgvMode::kArrived;
       if (arrived && o.reach_time_s < 0.0) {
         o.reach_time_s = t;

@@ -84,6 +84,13 @@ struct MissionTrace {
   std::vector<Vec2> goals;
   std::vector<Vec2> uav_path;
   std::vector<SupportMark> support_points;
+  struct Stop {
+    int ugv;
+    double from_s, to_s;
+    Vec2 where;
+    bool for_support;  // waiting for the UAV (t_pc < t_c); otherwise before the first RPE
+  };
+  std::vector<Stop> stops;
   std::vector<Vec2> collisions;
   std::vector<Vec2> unknown_cells;  // ground cells the UAV never saw (0.1 m), at the end
 };

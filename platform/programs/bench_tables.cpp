@@ -1,0 +1,282 @@
+#include "bench_tables.hpp"
+
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <vector>
+
+extern char** environ;
+
+namespace colag::programs {
+
+namespace {
+
+struct Config {
+  std::string scenario;
+  int ugvs = 1;
+  std::string ablation = "none";
+  bool self_perception = false;
+  std::string key() const {
+    return scenario + "/" + std::to_string(ugvs) + "/" + ablation + (self_perception ? "/sp" : "");
+  }
+};
+
+struct Run {
+  Config config;
+  int seed = 0;
+  std::string json_path;
+  pid_t pid = 0;
+  bool ok = false;
+  nlohmann::json result;
+};
+
+// The paper's numbers (reference/paper-results.md).
+struct PaperRow {
+  double reach, waiting, ugv_len, uav_len, sp_reach, sp_len;
+};
+const std::map<std::string, PaperRow> kTable1 = {
+    {"sparse/1", {106.78, 0.00, 33.02, 36.35, 106.20, 32.92}},
+    {"sparse/3", {106.13, 0.11, 32.96, 120.94, 106.59, 32.98}},
+    {"sparse/5", {116.62, 3.87, 33.65, 214.07, 107.59, 33.32}},
+    {"sparse/7", {129.12, 12.59, 33.59, 265.50, 106.92, 33.22}},
+    {"dense/1", {112.30, 0.00, 34.95, 38.27, 111.04, 34.52}},
+    {"dense/3", {112.38, 0.07, 34.73, 133.08, 110.69, 34.53}},
+    {"dense/5", {119.54, 4.86, 34.68, 216.05, 110.50, 34.38}},
+    {"dense/7", {143.18, 24.65, 34.98, 304.34, 111.88, 34.94}},
+};
+struct PaperAblation {
+  const char* text;  // what the paper reports
+};
+const std::map<std::string, std::string> kTable2 = {
+    {"none", "reach 119.54  wait 4.86  max 11.08  UGV 34.68  UAV 216.05"},
+    {"no-rpe", "fails: pose drifts, UGVs collide"},
+    {"no-uncertainty", "fails: UGVs collide"},
+    {"no-scheduling", "reach 135.73  wait 18.10  max 27.85  UGV 34.85  UAV 239.71"},
+    {"no-time-windows", "reach 132.43  wait 18.29  max 46.65  UGV 34.81  UAV 238.56"},
+};
+
+std::string sim_path(const TablesOptions& o) {
+  if (!o.sim.empty()) return o.sim;
+  char self[4096];
+  const ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
+  if (n <= 0) return "colag_sim";
+  std::string dir(self, static_cast<std::size_t>(n));
+  return dir.substr(0, dir.rfind('/')) + "/colag_sim";
+}
+
+bool start(Run& r, const std::string& sim, double max_time) {
+  std::vector<std::string> args = {sim,          "--quiet",
+                                   "--scenario", r.config.scenario,
+                                   "--ugvs",     std::to_string(r.config.ugvs),
+                                   "--seed",     std::to_string(r.seed),
+                                   "--ablation", r.config.ablation,
+                                   "--max-time", std::to_string(max_time),
+                                   "--json",     r.json_path};
+  if (r.config.self_perception) args.push_back("--self-perception");
+  std::vector<char*> argv;
+  for (auto& a : args)
+    argv.push_back(a.data());
+  argv.push_back(nullptr);
+  return posix_spawn(&r.pid, sim.c_str(), nullptr, nullptr, argv.data(), environ) == 0;
+}
+
+struct Mean {
+  double sum = 0;
+  int n = 0;
+  void add(double v) {
+    if (std::isfinite(v)) {
+      sum += v;
+      ++n;
+    }
+  }
+  double get() const { return n > 0 ? sum / n : NAN; }
+};
+
+struct Aggregate {
+  Mean reach, waiting, max_waiting, ugv_len, uav_len, rt;
+  int collisions = 0, runs = 0, all_reached = 0, failed = 0;
+};
+
+Aggregate aggregate(const std::vector<Run>& runs, const std::string& key) {
+  Aggregate a;
+  for (const Run& r : runs) {
+    if (r.config.key() != key) continue;
+    ++a.runs;
+    if (!r.ok) {
+      ++a.failed;
+      continue;
+    }
+    const auto& s = r.result["summary"];
+    a.reach.add(s["reach_time_s"].is_null() ? NAN : s["reach_time_s"].get<double>());
+    a.waiting.add(s["waiting_time_s"].get<double>());
+    a.max_waiting.add(s["max_waiting_time_s"].get<double>());
+    a.ugv_len.add(s["ugv_traj_length_m"].get<double>());
+    a.uav_len.add(s["uav_traj_length_m"].get<double>());
+    a.rt.add(r.result["realtime_factor"].get<double>());
+    a.collisions += s["collisions"].get<int>();
+    a.all_reached += s["all_reached"].get<bool>() ? 1 : 0;
+  }
+  return a;
+}
+
+}  // namespace
+
+int run_tables(const TablesOptions& o) {
+  std::vector<Config> configs;
+  const bool t1 = o.tables == "1" || o.tables == "all", t2 = o.tables == "2" || o.tables == "all";
+  if (o.quick) {
+    configs = {{"sparse", 1, "none", false}, {"sparse", 1, "none", true}};
+  } else {
+    if (t1) {
+      for (const char* scen : {"sparse", "dense"}) {
+        for (int n : {1, 3, 5, 7}) {
+          configs.push_back({scen, n, "none", false});
+          configs.push_back({scen, n, "none", true});
+        }
+      }
+    }
+    if (t2) {
+      for (const char* a :
+           {"none", "no-rpe", "no-uncertainty", "no-scheduling", "no-time-windows"}) {
+        if (t1 && std::string(a) == "none") continue;  // already in Table I (dense/5)
+        configs.push_back({"dense", 5, a, false});
+      }
+    }
+  }
+  const std::string sim = sim_path(o);
+  if (access(sim.c_str(), X_OK) != 0) {
+    std::fprintf(stderr, "colag_bench: cannot run %s\n", sim.c_str());
+    return 2;
+  }
+  const std::string dir = "/tmp/colag_bench." + std::to_string(getpid());
+  if (std::system(("mkdir -p " + dir).c_str()) != 0) return 2;
+  std::vector<Run> runs;
+  for (const Config& c : configs) {
+    for (int s = 1; s <= (o.quick ? 1 : o.seeds); ++s) {
+      Run r;
+      r.config = c;
+      r.seed = s;
+      r.json_path = dir + "/run" + std::to_string(runs.size()) + ".json";
+      runs.push_back(r);
+    }
+  }
+  std::printf("colag_bench: %zu missions (%d seed%s), %d at a time\n", runs.size(),
+              o.quick ? 1 : o.seeds, o.seeds == 1 ? "" : "s", o.jobs);
+  std::size_t next = 0, done = 0;
+  int active = 0;
+  while (done < runs.size()) {
+    while (active < o.jobs && next < runs.size()) {
+      if (!start(runs[next], sim, o.max_time_s)) {
+        std::fprintf(stderr, "colag_bench: cannot start %s\n", sim.c_str());
+        return 2;
+      }
+      ++next;
+      ++active;
+    }
+    int status = 0;
+    const pid_t pid = wait(&status);
+    if (pid < 0) break;
+    --active;
+    ++done;
+    for (Run& r : runs) {
+      if (r.pid != pid) continue;
+      r.ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
+      if (r.ok) {
+        std::ifstream in(r.json_path);
+        r.result = nlohmann::json::parse(in, nullptr, false);
+        r.ok = !r.result.is_discarded();
+      }
+      std::printf("  [%3zu/%zu] %-28s seed %d %s\n", done, runs.size(), r.config.key().c_str(),
+                  r.seed, r.ok ? "" : "FAILED");
+      std::fflush(stdout);
+    }
+  }
+
+  // CSV: one row per mission.
+  std::ofstream csv(o.csv);
+  csv << "scenario,ugvs,ablation,self_perception,seed,ok,all_reached,collisions,reach_time_s,"
+         "waiting_time_s,"
+         "max_waiting_time_s,ugv_traj_length_m,uav_traj_length_m,sim_time_s,realtime_factor\n";
+  for (const Run& r : runs) {
+    csv << r.config.scenario << ',' << r.config.ugvs << ',' << r.config.ablation << ','
+        << r.config.self_perception << ',' << r.seed << ',' << r.ok;
+    if (r.ok) {
+      const auto& s = r.result["summary"];
+      csv << ',' << s["all_reached"].get<bool>() << ',' << s["collisions"].get<int>() << ','
+          << (s["reach_time_s"].is_null() ? std::string("")
+                                          : std::to_string(s["reach_time_s"].get<double>()))
+          << ',' << s["waiting_time_s"].get<double>() << ','
+          << s["max_waiting_time_s"].get<double>() << ',' << s["ugv_traj_length_m"].get<double>()
+          << ',' << s["uav_traj_length_m"].get<double>() << ','
+          << r.result["sim_time_s"].get<double>() << ','
+          << r.result["realtime_factor"].get<double>();
+    }
+    csv << '\n';
+  }
+
+  const auto num = [](double v) {
+    char b[16];
+    std::snprintf(b, sizeof b, std::isfinite(v) ? "%.2f" : "-", v);
+    return std::string(b);
+  };
+  if (t1 || o.quick) {
+    std::printf(
+        "\nTable I: averages per UGV over the seeds; paper in brackets. Reach = time to the goal "
+        "(s),\n"
+        "wait = stopped for support (s), length (m), S.P. = self-perception baseline, ratio = "
+        "reach / S.P. reach.\n");
+    std::printf("%-7s %4s %18s %16s %17s %18s %18s %17s %6s %5s %6s\n", "map", "UGVs",
+                "reach [paper]", "wait [paper]", "UGV m [paper]", "UAV m [paper]",
+                "S.P. reach [paper]", "S.P. m [paper]", "ratio", "coll", "reached");
+    for (const char* scen : {"sparse", "dense"}) {
+      for (int n : {1, 3, 5, 7}) {
+        const Config c{scen, n, "none", false}, sp{scen, n, "none", true};
+        const Aggregate a = aggregate(runs, c.key()), b = aggregate(runs, sp.key());
+        if (a.runs == 0) continue;
+        const PaperRow& p = kTable1.at(std::string(scen) + "/" + std::to_string(n));
+        std::printf(
+            "%-7s %4d %8s [%7.2f] %6s [%6.2f] %7s [%6.2f] %8s [%6.2f] %8s [%7.2f] %7s [%6.2f] %6s "
+            "%5d %3d/%-3d\n",
+            scen, n, num(a.reach.get()).c_str(), p.reach, num(a.waiting.get()).c_str(), p.waiting,
+            num(a.ugv_len.get()).c_str(), p.ugv_len, num(a.uav_len.get()).c_str(), p.uav_len,
+            num(b.reach.get()).c_str(), p.sp_reach, num(b.ugv_len.get()).c_str(), p.sp_len,
+            num(a.reach.get() / b.reach.get()).c_str(), a.collisions + b.collisions, a.all_reached,
+            a.runs);
+      }
+    }
+  }
+  if (t2 && !o.quick) {
+    std::printf("\nTable II: dense map, 5 UGVs, each ablation (averages over the seeds)\n");
+    std::printf("%-16s %8s %7s %7s %7s %8s %5s %8s   %s\n", "method", "reach", "wait", "max",
+                "UGV m", "UAV m", "coll", "reached", "paper");
+    for (const char* ab :
+         {"none", "no-rpe", "no-uncertainty", "no-scheduling", "no-time-windows"}) {
+      const Aggregate a = aggregate(runs, Config{"dense", 5, ab, false}.key());
+      if (a.runs == 0) continue;
+      std::printf("%-16s %8s %7s %7s %7s %8s %5d %4d/%-3d   %s\n", ab, num(a.reach.get()).c_str(),
+                  num(a.waiting.get()).c_str(), num(a.max_waiting.get()).c_str(),
+                  num(a.ugv_len.get()).c_str(), num(a.uav_len.get()).c_str(), a.collisions,
+                  a.all_reached, a.runs, kTable2.at(ab).c_str());
+    }
+  }
+  Mean rt;
+  for (const Run& r : runs) {
+    if (r.ok && !r.config.self_perception) rt.add(r.result["realtime_factor"].get<double>());
+  }
+  std::printf("\nmean real-time factor of the ColAG runs: %.0fx;  per-mission CSV: %s\n", rt.get(),
+              o.csv.c_str());
+  int failed = 0;
+  for (const Run& r : runs)
+    failed += r.ok ? 0 : 1;
+  if (failed > 0) std::printf("%d mission%s failed to run\n", failed, failed == 1 ? "" : "s");
+  return failed > 0 ? 1 : 0;
+}
+
+}  // namespace colag::programs
