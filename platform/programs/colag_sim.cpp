@@ -71,6 +71,9 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   app.add_option("--lidar-columns", cfg.lidar_columns, "LiDAR columns per turn (1200 = 0.3 deg)")
       ->check(CLI::Range(60, 1200));
+  app.add_option("--predict-horizon", cfg.predict_horizon_m,
+                 "UGV collision-prediction horizon, m (paper: 2)")
+      ->check(CLI::Range(0.1, 20.0));
   app.add_option("--json", json_path, "write the metrics as JSON to this file");
   app.add_option("--png", png_path, "draw the mission into this PNG file");
   app.add_flag("--quiet", quiet, "no progress bar, no table");

@@ -182,6 +182,8 @@ Result<MissionOutcome> run_mission(const MissionConfig& cfg, MissionTrace* trace
     return fail("--ugvs must be in 1.." + std::to_string(limits::kMaxUgvs));
   }
   if (!(cfg.max_time_s > 0.0)) return fail("--max-time must be > 0");
+  if (!(cfg.predict_horizon_m > 0.0 && cfg.predict_horizon_m <= 20.0))
+    return fail("--predict-horizon must be in (0, 20] m");
   if (cfg.lidar_columns < 60 || cfg.lidar_columns > static_cast<int>(limits::kMaxLidarColumns)) {
     return fail("--lidar-columns must be in 60.." + std::to_string(limits::kMaxLidarColumns));
   }
@@ -241,6 +243,7 @@ Result<MissionOutcome> run_mission(const MissionConfig& cfg, MissionTrace* trace
     nc.start_guess = {Vec2(lane_x(i), kStartY), -M_PI / 2};
     nc.use_rpe_updates = cfg.ablation != Ablation::kNoRpe;
     nc.predictor.use_uncertainty = cfg.ablation != Ablation::kNoUncertainty;
+    nc.predictor.horizon_m = cfg.predict_horizon_m;
     nc.map.unknown_blocks_prediction = !cfg.self_perception;
     s.odometry = std::make_unique<hal::can::CanWheelOdometry>(world->ugv_can(i), wc.ugv.protocol,
                                                               wc.ugv.geometry);

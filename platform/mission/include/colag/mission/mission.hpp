@@ -29,6 +29,7 @@ struct MissionConfig {
   int lidar_columns = 1200;  // horizontal resolution of the simulated LiDARs (0.3 deg)
   double goal_tolerance_m =
       0.5;  // "reached": stopped at the goal with the true position this close
+  double predict_horizon_m = 2.0;  // UGV collision-prediction horizon (straight-line distance)
   std::function<void(double fraction)> progress;  // called every simulated second (optional)
 };
 
