@@ -16,6 +16,28 @@ class Task {
   virtual void step(TimePoint now) = 0;
 };
 
+// A Task that runs one member function of an owner object, so that one robot task can offer
+// several loops at different rates to the same executor table (e.g. a 50 Hz control loop and a
+// 10 Hz planning loop). init() is forwarded to the owner's init, which must tolerate being
+// called once per loop.
+template <class Owner>
+class MemberLoop final : public Task {
+ public:
+  using Step = void (Owner::*)(TimePoint);
+  using Init = Status (Owner::*)(TimePoint);
+  MemberLoop(Owner& owner, const char* name, Init init_fn, Step step_fn)
+      : owner_(owner), name_(name), init_(init_fn), step_(step_fn) {}
+  const char* name() const override { return name_; }
+  Status init(TimePoint now) override { return (owner_.*init_)(now); }
+  void step(TimePoint now) override { (owner_.*step_)(now); }
+
+ private:
+  Owner& owner_;
+  const char* name_;
+  Init init_;
+  Step step_;
+};
+
 // One row of an executor's schedule table.
 struct TaskEntry {
   Task* task = nullptr;

@@ -92,20 +92,7 @@ class UavSupervisorTask {
   const UavSupervisorConfig& config() const { return config_; }
 
  private:
-  class Loop final : public platform::Task {
-   public:
-    using Step = void (UavSupervisorTask::*)(TimePoint);
-    Loop(UavSupervisorTask& owner, const char* name, Step fn)
-        : owner_(owner), name_(name), step_(fn) {}
-    const char* name() const override { return name_; }
-    Status init(TimePoint now) override { return owner_.init(now); }
-    void step(TimePoint now) override { (owner_.*step_)(now); }
-
-   private:
-    UavSupervisorTask& owner_;
-    const char* name_;
-    Step step_;
-  };
+  using Loop = platform::MemberLoop<UavSupervisorTask>;
   struct Request {
     bool active = false;
     bool served = false;  // hovered there until the timeout: skip for a while

@@ -59,19 +59,7 @@ class UgvNavTask {
   const UgvNavConfig& config() const { return config_; }
 
  private:
-  class Loop final : public platform::Task {
-   public:
-    using Step = void (UgvNavTask::*)(TimePoint);
-    Loop(UgvNavTask& owner, const char* name, Step fn) : owner_(owner), name_(name), step_(fn) {}
-    const char* name() const override { return name_; }
-    Status init(TimePoint now) override { return owner_.init(now); }
-    void step(TimePoint now) override { (owner_.*step_)(now); }
-
-   private:
-    UgvNavTask& owner_;
-    const char* name_;
-    Step step_;
-  };
+  using Loop = platform::MemberLoop<UgvNavTask>;
   struct OtherUgv {
     bool known = false;
     TimePoint heard{};
