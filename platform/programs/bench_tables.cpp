@@ -4,12 +4,14 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <thread>
 #include <vector>
 
 extern char** environ;
@@ -71,8 +73,9 @@ std::string sim_path(const TablesOptions& o) {
   return dir.substr(0, dir.rfind('/')) + "/colag_sim";
 }
 
-bool start(Run& r, const std::string& sim, double max_time) {
+bool start(Run& r, const std::string& sim, double max_time, int threads) {
   std::vector<std::string> args = {sim,          "--quiet",
+                                   "--threads",  std::to_string(threads),
                                    "--scenario", r.config.scenario,
                                    "--ugvs",     std::to_string(r.config.ugvs),
                                    "--seed",     std::to_string(r.seed),
@@ -169,11 +172,14 @@ int run_tables(const TablesOptions& o) {
   }
   std::printf("colag_bench: %zu missions (%d seed%s), %d at a time\n", runs.size(),
               o.quick ? 1 : o.seeds, o.seeds == 1 ? "" : "s", o.jobs);
+  // Each mission gets an equal share of the cores (its results do not depend on it).
+  const int threads =
+      std::clamp(static_cast<int>(std::thread::hardware_concurrency()) / o.jobs, 1, 8);
   std::size_t next = 0, done = 0;
   int active = 0;
   while (done < runs.size()) {
     while (active < o.jobs && next < runs.size()) {
-      if (!start(runs[next], sim, o.max_time_s)) {
+      if (!start(runs[next], sim, o.max_time_s, threads)) {
         std::fprintf(stderr, "colag_bench: cannot start %s\n", sim.c_str());
         return 2;
       }

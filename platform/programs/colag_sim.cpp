@@ -74,10 +74,14 @@ int main(int argc, char** argv) {
   app.add_option("--predict-horizon", cfg.predict_horizon_m,
                  "UGV collision-prediction horizon, m (paper: 2)")
       ->check(CLI::Range(0.1, 20.0));
+  app.add_option("--threads", cfg.threads,
+                 "cores the simulation may use (the results are the same for any number)")
+      ->check(CLI::Range(1, 8));
   app.add_option("--json", json_path, "write the metrics as JSON to this file");
   app.add_option("--png", png_path, "draw the mission into this PNG file");
   app.add_flag("--quiet", quiet, "no progress bar, no table");
-  app.add_flag("--verbose", verbose, "also list every stop of every UGV (when, where, why)");
+  app.add_flag("--verbose", verbose,
+               "also list every stop of every UGV and the host time of each task");
   CLI11_PARSE(app, argc, argv);
   if (!map_file.empty()) {
     cfg.scenario = "file";
@@ -118,6 +122,17 @@ int main(int argc, char** argv) {
       std::printf("  %2d  %7.1f - %7.1f s  (%6.2f, %6.2f)  %s\n", s.ugv, s.from_s, s.to_s,
                   s.where.x(), s.where.y(),
                   s.for_support ? "waiting for support" : "waiting for the first relative pose");
+    }
+    double total = 0.0;
+    for (const auto& t : o.task_times)
+      total += t.total_s;
+    std::printf("\nhost CPU per task (all robots; %d thread%s)\n", cfg.threads,
+                cfg.threads == 1 ? "" : "s");
+    std::printf("  %-16s %9s %9s %6s %12s\n", "task", "steps", "total s", "share", "longest ms");
+    for (const auto& t : o.task_times) {
+      std::printf("  %-16s %9llu %9.3f %5.1f%% %12.3f\n", t.name.c_str(),
+                  static_cast<unsigned long long>(t.steps), t.total_s,
+                  total > 0 ? 100.0 * t.total_s / total : 0.0, t.longest_ms);
     }
   }
   if (!json_path.empty()) {

@@ -11,6 +11,7 @@
 
 #include "colag/common/random.hpp"
 #include "colag/mock/lidar_simulator.hpp"
+#include "colag/platform/worker_pool.hpp"
 #include "colag/uav/map_sharer.hpp"
 #include "colag/uav/mapper.hpp"
 #include "colag/uav/scheduler.hpp"
@@ -48,10 +49,11 @@ Scene& scene() {
   return s;
 }
 
+// A flight at 3 m/s (0.3 m between 10 Hz scans) across the dense map, into a fresh map: each
+// scan is new ground ahead plus much already seen, as in a mission. state.range(0) = cores.
 void BM_ScanInsertion(benchmark::State& state) {
-  // A flight at 3 m/s (0.3 m between 10 Hz scans) across the dense map, into a fresh map: each
-  // scan is new ground ahead plus much already seen, as in a mission.
   auto& s = scene();
+  platform::WorkerPool pool(static_cast<int>(state.range(0)) - 1);
   constexpr int kScans = 60;
   std::vector<std::vector<hal::LidarPoint>> points(kScans), misses(kScans);
   std::vector<Pose3> poses;
@@ -62,12 +64,12 @@ void BM_ScanInsertion(benchmark::State& state) {
     points[k].assign(p.begin(), p.end());
     misses[k].assign(m.begin(), m.end());
   }
-  auto map = std::make_unique<Mapper>();
+  auto map = std::make_unique<Mapper>(MapperConfig{}, &pool);
   int k = 0;
   for (auto _ : state) {
     if (k == kScans) {
       state.PauseTiming();
-      map = std::make_unique<Mapper>();
+      map = std::make_unique<Mapper>(MapperConfig{}, &pool);
       k = 0;
       state.ResumeTiming();
     }
@@ -75,17 +77,24 @@ void BM_ScanInsertion(benchmark::State& state) {
     ++k;
   }
   state.counters["rays"] = static_cast<double>(points[0].size() + misses[0].size());
+  const auto& c = map->counters();
+  const double scans = static_cast<double>(c.scans);
+  state.counters["traced"] = static_cast<double>(c.rays - c.rays_merged) / scans;
+  state.counters["visits"] = static_cast<double>(c.voxel_visits) / scans;
+  state.counters["updates"] = static_cast<double>(c.voxel_updates) / scans;
 }
-BENCHMARK(BM_ScanInsertion)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ScanInsertion)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_LidarSimulation(benchmark::State& state) {  // the mock, for the simulator's budget
   auto& s = scene();
+  platform::WorkerPool pool(static_cast<int>(state.range(0)) - 1);
+  mock::LidarSimulator lidar({}, &pool);
   const Pose3 pose{Vec3(0.3, 2.0, 1.0), Quat::Identity()};
   std::span<const hal::LidarPoint> pts, misses;
   for (auto _ : state)
-    s.lidar->scan(s.world, pose, pts, misses);
+    lidar.scan(s.world, pose, pts, misses);
 }
-BENCHMARK(BM_LidarSimulation)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_LidarSimulation)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_OnePatch(benchmark::State& state) {
   auto& s = scene();

@@ -76,9 +76,12 @@ TEST(Mission, SameSeedSameMissionBitForBit) {
   cfg.ugvs = 2;
   cfg.seed = 7;
   cfg.max_time_s = 40;
+  cfg.threads = 2;
   const std::string a = to_json(run(cfg), /*include_wall_time=*/false);
   const std::string b = to_json(run(cfg), false);
   EXPECT_EQ(a, b);
+  cfg.threads = 1;  // the work split over cores changes nothing
+  EXPECT_EQ(a, to_json(run(cfg), false));
   cfg.seed = 8;
   EXPECT_NE(a, to_json(run(cfg), false));
 }
@@ -89,6 +92,11 @@ TEST(Mission, RejectsABadConfiguration) {
   cfg.ugvs = 0;
   EXPECT_FALSE(run_mission(cfg, nullptr, &error));
   EXPECT_NE(error.find("ugvs"), std::string::npos);
+  cfg.ugvs = 2;
+  cfg.threads = 0;
+  EXPECT_FALSE(run_mission(cfg, nullptr, &error));
+  EXPECT_NE(error.find("threads"), std::string::npos);
+  cfg.threads = 2;
   cfg.ugvs = 2;
   cfg.scenario = "file";
   cfg.map_file = "/nonexistent.pcd";

@@ -5,7 +5,7 @@
 #include <cstdlib>
 
 // Two hooks, chosen at build time (test code, not task code):
-// - sanitizer builds: the allocator is ASan's, which offers malloc hooks;
+// - sanitizer builds: the allocator is the sanitizer's (ASan, TSan), which offers malloc hooks;
 // - plain builds: malloc & co. are interposed here and forwarded to glibc's __libc_* entry
 //   points. libstdc++'s operator new calls malloc, so `new` is counted as well.
 
@@ -25,7 +25,7 @@ inline void note_allocation() {
 }
 }  // namespace
 
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
 
 extern "C" int __sanitizer_install_malloc_and_free_hooks(void (*malloc_hook)(const volatile void*,
                                                                              std::size_t),

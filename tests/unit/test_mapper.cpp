@@ -6,6 +6,7 @@
 
 #include "colag/common/random.hpp"
 #include "colag/mock/lidar_simulator.hpp"
+#include "colag/platform/worker_pool.hpp"
 #include "colag/uav/mapper.hpp"
 
 using namespace colag;
@@ -145,4 +146,79 @@ TEST(Mapper, IgnoresScansFromOutsideTheGridAndNonFinitePoints) {
   map->insert_scan({Vec3(0, 0, 1), Quat::Identity()}, {TimePoint{}, 8.0F, {&bad, 1}, {}});
   EXPECT_EQ(map->counters().rays_outside, 2u);
   EXPECT_EQ(map->counters().voxel_updates, 0u);
+}
+
+// The early stop in Mapper::trace skips miss updates that full tracing would make, and nothing
+// else: so it may leave voxels less certain (unknown or more occupied), but it must never call a
+// voxel free that full tracing does not, and over a flight it must agree almost everywhere.
+TEST(Mapper, EarlyStopNeverAddsFreeSpaceAndAgreesWithFullTracing) {
+  mock::MapGenConfig gen;
+  gen.boxes = 80;
+  const mock::BoxWorld world = mock::generate_box_world(gen).value();
+  auto lidar = std::make_unique<mock::LidarSimulator>();
+  MapperConfig full_cfg;
+  full_cfg.early_stop_voxels = full_cfg.early_stop_crossed = 1 << 30;
+  auto fast = std::make_unique<Mapper>();
+  auto full = std::make_unique<Mapper>(full_cfg);
+  for (int k = 0; k < 40; ++k) {  // 12 m at 3 m/s, 10 Hz
+    const Pose3 pose{Vec3(0.3, 8.0 - 0.3 * k, 1.0), Quat::Identity()};
+    std::span<const hal::LidarPoint> points, misses;
+    lidar->scan(world, pose, points, misses);
+    fast->insert_scan(pose, {TimePoint{}, 8.0F, points, misses});
+    full->insert_scan(pose, {TimePoint{}, 8.0F, points, misses});
+  }
+  const auto& g = fast->geometry();
+  std::size_t observed = 0, differ = 0, false_free = 0;
+  for (int z = 0; z < g.cells_z(); ++z) {
+    for (int y = 0; y < g.cells_y(); ++y) {
+      for (int x = 0; x < g.cells_x(); ++x) {
+        const VoxelState a = fast->state(VoxelIndex{x, y, z}), b = full->state(VoxelIndex{x, y, z});
+        observed += b != VoxelState::kUnknown;
+        differ += a != b;
+        false_free += a == VoxelState::kFree && b != VoxelState::kFree;
+      }
+    }
+  }
+  EXPECT_EQ(false_free, 0u);
+  const double share = static_cast<double>(differ) / static_cast<double>(observed);
+  RecordProperty("differ_share", std::to_string(share));
+  EXPECT_LT(share, 0.03);
+  EXPECT_LT(fast->counters().voxel_visits * 3, full->counters().voxel_visits);
+}
+
+// The halves of a scan touch disjoint voxels, so running them on two threads must give the very
+// same map as running them one after the other.
+TEST(Mapper, SameMapOnOneThreadAndOnTwo) {
+  mock::MapGenConfig gen;
+  gen.boxes = 80;
+  gen.seed = 3;
+  const mock::BoxWorld world = mock::generate_box_world(gen).value();
+  auto lidar = std::make_unique<mock::LidarSimulator>();
+  platform::WorkerPool pool(1);
+  auto one = std::make_unique<Mapper>();
+  auto two = std::make_unique<Mapper>(MapperConfig{}, &pool);
+  Rng rng(5);
+  for (int k = 0; k < 30; ++k) {  // a wandering, slightly tilted flight
+    const Pose3 pose{Vec3(rng.uniform(-6, 6), rng.uniform(-6, 6), rng.uniform(0.8, 1.6)),
+                     Quat(Eigen::AngleAxisd(rng.uniform(-0.1, 0.1), Vec3::UnitX()) *
+                          Eigen::AngleAxisd(rng.uniform(-M_PI, M_PI), Vec3::UnitZ()))};
+    std::span<const hal::LidarPoint> points, misses;
+    lidar->scan(world, pose, points, misses);
+    one->insert_scan(pose, {TimePoint{}, 8.0F, points, misses});
+    two->insert_scan(pose, {TimePoint{}, 8.0F, points, misses});
+  }
+  const auto& g = one->geometry();
+  std::size_t differ = 0;
+  for (int z = 0; z < g.cells_z(); ++z) {
+    for (int y = 0; y < g.cells_y(); ++y) {
+      const std::int8_t* a = one->row(y, z);
+      const std::int8_t* b = two->row(y, z);
+      for (int x = 0; x < g.cells_x(); ++x)
+        differ += a[x] != b[x];
+    }
+  }
+  EXPECT_EQ(differ, 0u);
+  EXPECT_EQ(one->counters().voxel_updates, two->counters().voxel_updates);
+  EXPECT_EQ(one->counters().voxel_visits, two->counters().voxel_visits);
+  EXPECT_GT(one->counters().rays_resumed, 0u);
 }

@@ -8,6 +8,7 @@
 #include "colag/hal/scripted/scripted_devices.hpp"
 #include "colag/mock/pcd_loader.hpp"
 #include "colag/mock/sim_world.hpp"
+#include "colag/platform/worker_pool.hpp"
 
 using namespace colag;
 using namespace colag::mock;
@@ -151,4 +152,20 @@ TEST(SimWorld, TheCameraSeesUgvsInRangeAndInSightOnly) {
   EXPECT_EQ(d[0].ugv_id, 0);
   EXPECT_NEAR(d[0].ugv_in_uav.p.x(), 1.0, 1.0);  // 0.2 m noise: within 5 sigma
   EXPECT_FALSE(rig.sim->line_of_sight(Vec3(0, 0, 1), Vec3(4.5, 0, 0.3)));
+}
+
+TEST(LidarSimulator, TwoThreadsCastTheSameScanAsOne) {
+  mock::MapGenConfig gen;
+  const mock::BoxWorld world = mock::generate_box_world(gen).value();
+  platform::WorkerPool pool(1);
+  mock::LidarSimulator one, two({}, &pool);
+  const Pose3 pose{Vec3(0.4, 3.1, 1.0), quat_from_yaw(0.7)};
+  std::span<const hal::LidarPoint> p1, m1, p2, m2;
+  one.scan(world, pose, p1, m1);
+  two.scan(world, pose, p2, m2);
+  ASSERT_GT(p1.size(), 1000u);
+  ASSERT_EQ(p1.size(), p2.size());
+  ASSERT_EQ(m1.size(), m2.size());
+  EXPECT_EQ(std::memcmp(p1.data(), p2.data(), p1.size_bytes()), 0);
+  EXPECT_EQ(std::memcmp(m1.data(), m2.data(), m1.size_bytes()), 0);
 }

@@ -11,15 +11,25 @@ std::int8_t to_units(double p) {
   const double l = std::log(p / (1.0 - p)) * kScale;
   return static_cast<std::int8_t>(std::clamp(std::lround(l), -127L, 127L));
 }
+// How far a half's part of a ray stops short of the sensor's row (and the rest starts inside it).
+constexpr double kEdge_m = 1e-7;
 }  // namespace
 
-Mapper::Mapper(const MapperConfig& config)
+Mapper::Mapper(const MapperConfig& config, ForkJoin* fork_join)
     : config_(config),
+      fork_join_(fork_join),
       hit_(to_units(config.p_hit)),
       miss_(to_units(config.p_miss)),
       min_(to_units(config.p_min)),
       max_(to_units(config.p_max)),
       occupied_(to_units(config.p_occupied)) {
+  // The two halves touch disjoint voxels, but bits of touched_ share 64-bit words where rows
+  // meet in memory. Within a layer that is only ever one half's row and the sensor's row; the
+  // last row of a layer meets the first row of the next, which the halves could both reach
+  // only if a ray could span (almost) the whole grid in y.
+  const auto& g = geometry();
+  const int reach_rows = static_cast<int>(std::ceil(config.max_range_m / g.resolution())) + 2;
+  halves_disjoint_ = 2 * reach_rows < g.cells_y() - 1;
   logodds_.fill(kUnknown);
   touched_.fill(0);
 }
@@ -29,7 +39,7 @@ VoxelState Mapper::state(VoxelIndex v) const {
   return state_of(logodds_[geometry().index(v)]);
 }
 
-inline bool Mapper::update(std::size_t i, std::int8_t delta) {
+inline bool Mapper::update(std::size_t i, std::int8_t delta, Part& part) {
   std::uint64_t& word = touched_[i >> 6];
   const std::uint64_t bit = std::uint64_t{1} << (i & 63);
   if (word & bit) return false;  // once per scan; hits were applied first
@@ -38,96 +48,192 @@ inline bool Mapper::update(std::size_t i, std::int8_t delta) {
   const int base = old == kUnknown ? 0 : old;
   logodds_[i] = static_cast<std::int8_t>(
       std::clamp(base + delta, static_cast<int>(min_), static_cast<int>(max_)));
-  ++counters_.voxel_updates;
+  ++part.voxel_updates;
   return logodds_[i] != old;
 }
 
-// The end voxel gets a hit when the ray ended on a return (a miss otherwise); every voxel the
-// ray crossed on the way gets a miss. Traced backwards, from the end towards the sensor, and
-// stopped once the ray has crossed `early_stop_voxels` consecutive voxels that this update
-// did not change (already updated in this scan, or already saturated free) in
-// this scan: near the sensor the rays of a scan form a dense fan, so everything nearer has
-// been updated by the rays before (the first rays of a scan trace all the way).
-void Mapper::trace(const Vec3& origin, const Vec3& end, bool hit) {
-  const auto& g = geometry();
-  // Clip the far end into the grid (rays may leave it, e.g. through the ceiling).
-  Vec3 far = end;
-  bool ends_inside = g.contains(g.voxel_of(end));
-  if (!ends_inside) {
-    const Vec3 lo(g.origin_x(), g.origin_y(), g.origin_z());
-    const Vec3 hi = lo + g.resolution() * Vec3(g.cells_x(), g.cells_y(), g.cells_z());
-    const Vec3 d = end - origin;
-    double t1 = 1.0;
-    for (int k = 0; k < 3; ++k) {
-      if (d[k] > 0) t1 = std::min(t1, (hi[k] - origin[k]) / d[k]);
-      if (d[k] < 0) t1 = std::min(t1, (lo[k] - origin[k]) / d[k]);
-    }
-    far = origin + std::max(0.0, t1 - 1e-6) * d;
-    hit = false;
-  }
-  const std::size_t first = g.index(g.voxel_of(far));
-  int run = 0;
-  any_voxel_index_on_segment(g, far, origin, [&](std::size_t i) {
-    if (i == first) {
-      update(i, hit ? hit_ : miss_);
+// Rays are traced backwards, from the end towards the sensor: the end voxel gets a hit (already
+// applied) or a miss, every voxel on the way a miss. Near the sensor the rays of a scan form a
+// dense fan, so a ray stops early once it has crossed `early_stop_voxels` consecutive voxels it
+// did not change (updated earlier in this scan, or already saturated free), or
+// `early_stop_crossed` consecutive voxels an earlier ray of this scan crossed: from there on the
+// earlier rays have done the work. Stopping early only ever skips miss updates, so it never
+// creates free space (a test compares it with full tracing).
+bool Mapper::trace(const Vec3& a, const Vec3& b, bool first_is_end, bool hit, Runs& runs,
+                   Part& part) {
+  const int stop_unchanged = config_.early_stop_voxels;
+  const int stop_crossed = config_.early_stop_crossed;
+  std::uint64_t visits = 0;  // counted locally: the map's int8 writes may alias a member
+  const bool stopped = any_voxel_index_on_segment(geometry(), a, b, [&](std::size_t i) {
+    ++visits;
+    if (first_is_end) {
+      first_is_end = false;
+      update(i, hit ? hit_ : miss_, part);
       return false;
     }
-    if (!update(i, miss_)) return ++run >= config_.early_stop_voxels;
-    run = 0;
-    return false;
+    if (touched(i)) {
+      ++runs.crossed;
+      return ++runs.unchanged >= stop_unchanged || runs.crossed >= stop_crossed;
+    }
+    runs.crossed = 0;
+    if (update(i, miss_, part)) {
+      runs.unchanged = 0;
+      return false;
+    }
+    return ++runs.unchanged >= stop_unchanged;
   });
+  part.voxel_visits += visits;
+  return !stopped;
+}
+
+template <class F>
+void Mapper::both(F&& part) {
+  if (fork_join_ != nullptr && halves_disjoint_) {
+    fork_join_->run(2, part);
+  } else {
+    part(0);
+    part(1);
+  }
+}
+
+// Rays [from, to) of the scan (points, then misses) in world coordinates: cut at the maximum
+// range and at the grid's edge (rays may leave it, e.g. through the ceiling), with their end
+// voxel. Each ray is computed on its own, so any split of the range gives the same rays.
+void Mapper::prepare(const Pose3& sensor, const hal::LidarScanView& scan, std::size_t from,
+                     std::size_t to, Part& part) {
+  const auto& g = geometry();
+  const Mat3 R = sensor.q.toRotationMatrix();
+  const Vec3 lo(g.origin_x(), g.origin_y(), g.origin_z());
+  const Vec3 hi = lo + g.resolution() * Vec3(g.cells_x(), g.cells_y(), g.cells_z());
+  for (std::size_t k = from; k < to; ++k) {
+    const bool returns = k < scan.points.size();
+    const hal::LidarPoint& p = returns ? scan.points[k] : scan.misses[k - scan.points.size()];
+    Ray& ray = rays_[k];
+    const Vec3 local(p.x_m, p.y_m, p.z_m);
+    if (!all_finite(local)) {
+      ray.row = -1;
+      ++part.rays_outside;
+      continue;
+    }
+    const double max_r = config_.max_range_m;
+    const double r2 = local.squaredNorm();
+    const bool within = r2 <= max_r * max_r;
+    ray.end = sensor.p + R * (within ? local : local * (max_r / std::sqrt(r2)));
+    ray.hit = returns && within;
+    VoxelIndex v = g.voxel_of(ray.end);
+    if (!g.contains(v)) {
+      const Vec3 d = ray.end - sensor.p;
+      double t = 1.0;
+      for (int a = 0; a < 3; ++a) {
+        if (d[a] > 0) t = std::min(t, (hi[a] - sensor.p[a]) / d[a]);
+        if (d[a] < 0) t = std::min(t, (lo[a] - sensor.p[a]) / d[a]);
+      }
+      ray.end = sensor.p + std::max(0.0, t - 1e-6) * d;
+      ray.hit = false;
+      v = g.voxel_of(ray.end);
+    }
+    ray.voxel = static_cast<std::uint32_t>(g.index(v));
+    ray.row = static_cast<std::int16_t>(v.y);
+  }
+}
+
+// Rays ending in a voxel that an earlier ray of this scan already ended in are dropped (OctoMap's
+// "discretize"): from the same origin to the same voxel they are at most a voxel's width apart
+// and cross the same voxels up to boundary grazing (about 2/3 of a VLP-32 scan at 0.1 m). Returns
+// come first in the scan, so a voxel with a return keeps it, and all hits are applied before any
+// ray is traced, so that the crossings of other rays do not wipe them out.
+void Mapper::merge_and_hit(int row_lo, int row_hi, Part& part) {
+  for (Ray& ray : rays_) {
+    if (ray.row < row_lo || ray.row > row_hi) continue;
+    std::uint64_t& word = ended_[ray.voxel >> 6];
+    const std::uint64_t bit = std::uint64_t{1} << (ray.voxel & 63);
+    ray.merged = (word & bit) != 0;  // only ever written by the half that owns the ray's row
+    if (ray.merged) {
+      ++part.rays_merged;
+      continue;
+    }
+    word |= bit;
+    if (ray.hit) update(ray.voxel, hit_, part);
+  }
+}
+
+// One half of a scan: the rays that end south (side -1) or north (+1) of the sensor's voxel row,
+// traced up to just before that row; those that get there are resumed later, in insert_scan.
+// Rays ending in one half only ever cross voxels of that half or of the sensor's row, so the
+// two halves can run at the same time.
+void Mapper::trace_half(const Vec3& origin, int sensor_row, int side, Part& part) {
+  const auto& g = geometry();
+  const int row_lo = side < 0 ? 0 : sensor_row + 1;
+  const int row_hi = side < 0 ? sensor_row - 1 : g.cells_y() - 1;
+  merge_and_hit(row_lo, row_hi, part);
+  const double edge_y =
+      g.origin_y() + (sensor_row + (side < 0 ? 0 : 1)) * g.resolution() + side * kEdge_m;
+  for (std::uint32_t k = 0; k < rays_.size(); ++k) {
+    const Ray& ray = rays_[k];
+    if (ray.row < row_lo || ray.row > row_hi || ray.merged) continue;
+    const Vec3 d = origin - ray.end;
+    const double s = std::clamp((edge_y - ray.end.y()) / d.y(), 0.0, 1.0);
+    Runs runs;
+    if (trace(ray.end, ray.end + s * d, true, ray.hit, runs, part)) {
+      (void)part.resume.push_back({k, static_cast<std::uint8_t>(std::min(runs.unchanged, 255)),
+                                   static_cast<std::uint8_t>(std::min(runs.crossed, 255))});
+    }
+  }
 }
 
 void Mapper::insert_scan(const Pose3& sensor, const hal::LidarScanView& scan) {
   ++counters_.scans;
-  touched_.fill(0);
-  ended_.fill(0);
   const auto& g = geometry();
+  const std::size_t total = scan.points.size() + scan.misses.size();
   if (!g.contains(g.voxel_of(sensor.p)) || !all_finite(sensor.p)) {
-    counters_.rays_outside += scan.points.size() + scan.misses.size();
+    counters_.rays_outside += total;
     return;
   }
-  // 1. Every ray's world end point (cut at the maximum range), once.
-  const Mat3 R = sensor.q.toRotationMatrix();
-  rays_.clear();
-  const auto collect = [&](std::span<const hal::LidarPoint> points, bool returns) {
-    for (const hal::LidarPoint& p : points) {
-      const Vec3 local(p.x_m, p.y_m, p.z_m);
-      if (!all_finite(local) || rays_.full()) {
-        ++counters_.rays_outside;
-        continue;
-      }
-      const double r = local.norm();
-      const bool within = r <= config_.max_range_m;
-      const Vec3 end = sensor.p + R * (within ? local : local * (config_.max_range_m / r));
-      (void)rays_.push_back({end, returns && within});
-    }
-  };
-  collect(scan.points, true);
-  collect(scan.misses, false);
-  // 2. Returns first, so that their voxels keep the hit in this scan.
-  for (const Ray& ray : rays_) {
-    const VoxelIndex v = g.voxel_of(ray.end);
-    if (ray.hit && g.contains(v)) update(g.index(v), hit_);
+  const std::size_t n = std::min(total, rays_.capacity());
+  counters_.rays_outside += total - n;
+  (void)rays_.resize(n);
+  for (Part& part : parts_) {
+    part.resume.clear();
+    part.rays_outside = part.rays_merged = part.voxel_updates = part.voxel_visits = 0;
   }
-  // 3. Trace. Rays ending in a voxel that an earlier ray of this scan already ended in are not
-  //    traced again (OctoMap's "discretize"): from the same origin to the same voxel they are
-  //    at most a voxel's width apart and cross the same voxels up to boundary grazing. About
-  //    2/3 of a VLP-32 scan at 0.1 m. Counted in rays_merged.
+
+  // 1. Clear the per-scan bits and compute the rays, each part a half of both.
+  both([&](int k) {
+    const std::size_t words = touched_.size(), w0 = k == 0 ? 0 : words / 2,
+                      w1 = k == 0 ? words / 2 : words;
+    std::fill(touched_.begin() + w0, touched_.begin() + w1, 0);
+    std::fill(ended_.begin() + w0, ended_.begin() + w1, 0);
+    prepare(sensor, scan, k == 0 ? 0 : n / 2, k == 0 ? n / 2 : n, parts_[k]);
+  });
+  // 2. The halves south and north of the sensor's row.
+  const int sensor_row = g.voxel_of(sensor.p).y;
+  both([&](int k) { trace_half(sensor.p, sensor_row, k == 0 ? -1 : 1, parts_[k]); });
+  // 3. The sensor's row: the rays that end in it, then the rest of those that reached it.
+  Part& serial = parts_[0];
+  merge_and_hit(sensor_row, sensor_row, serial);
   for (const Ray& ray : rays_) {
-    ++counters_.rays;
-    const VoxelIndex v = g.voxel_of(ray.end);
-    if (g.contains(v)) {
-      const std::size_t i = g.index(v);
-      std::uint64_t& word = ended_[i >> 6];
-      const std::uint64_t bit = std::uint64_t{1} << (i & 63);
-      if (word & bit) {
-        ++counters_.rays_merged;
-        continue;
-      }
-      word |= bit;
+    Runs runs;
+    if (ray.row == sensor_row && !ray.merged)
+      (void)trace(ray.end, sensor.p, true, ray.hit, runs, serial);
+  }
+  for (int k = 0; k < 2; ++k) {
+    const double edge_y =
+        g.origin_y() + (sensor_row + k) * g.resolution() + (k == 0 ? 1 : -1) * kEdge_m;
+    for (const Part::Resume& r : parts_[static_cast<std::size_t>(k)].resume) {
+      const Ray& ray = rays_[r.ray];
+      const Vec3 d = sensor.p - ray.end;
+      const double s = std::clamp((edge_y - ray.end.y()) / d.y(), 0.0, 1.0);
+      Runs runs{r.unchanged, r.crossed};
+      (void)trace(ray.end + s * d, sensor.p, false, false, runs, serial);
+      ++counters_.rays_resumed;
     }
-    trace(sensor.p, ray.end, ray.hit);
+  }
+  counters_.rays += n - parts_[0].rays_outside - parts_[1].rays_outside;
+  for (const Part& part : parts_) {
+    counters_.rays_outside += part.rays_outside;
+    counters_.rays_merged += part.rays_merged;
+    counters_.voxel_updates += part.voxel_updates;
+    counters_.voxel_visits += part.voxel_visits;
   }
 }
 

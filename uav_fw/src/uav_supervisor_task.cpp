@@ -31,7 +31,7 @@ SharerConfig flight_cutter_config(const UavSupervisorConfig& c) {
 UavSupervisorTask::UavSupervisorTask(const UavSupervisorConfig& config,
                                      platform::Transport& transport, hal::OdometrySource& odometry,
                                      hal::Lidar& lidar, hal::RelativePoseSensor& camera,
-                                     hal::FlightController& flight)
+                                     hal::FlightController& flight, ForkJoin* fork_join)
     : config_(config),
       transport_(transport),
       odometry_(odometry),
@@ -46,7 +46,7 @@ UavSupervisorTask::UavSupervisorTask(const UavSupervisorConfig& config,
                     &UavSupervisorTask::sharing_step),
       scheduling_loop_(*this, "uav_scheduling", &UavSupervisorTask::init,
                        &UavSupervisorTask::scheduling_step),
-      mapper_(config.mapper),
+      mapper_(config.mapper, fork_join),
       sharer_(config.sharer),
       flight_cutter_(flight_cutter_config(config)),
       flight_layer_(flight_layer_config(config)),

@@ -24,7 +24,8 @@ double ray_box(const Vec3& o, const Vec3& d, const Box& b) {
   return t0;
 }
 
-LidarSimulator::LidarSimulator(const LidarPattern& pattern) : pattern_(pattern) {
+LidarSimulator::LidarSimulator(const LidarPattern& pattern, ForkJoin* fork_join)
+    : pattern_(pattern), fork_join_(fork_join) {
   const std::size_t n =
       static_cast<std::size_t>(pattern.beams) * static_cast<std::size_t>(pattern.columns);
   directions_.reserve(n);
@@ -39,6 +40,10 @@ LidarSimulator::LidarSimulator(const LidarPattern& pattern) : pattern_(pattern) 
   }
   points_.reserve(n);
   misses_.reserve(n);
+  for (std::size_t part = 0; part < 2; ++part) {
+    parts_[part].points.reserve(n);
+    parts_[part].misses.reserve(n);
+  }
   column_boxes_.resize(static_cast<std::size_t>(pattern.columns));
   for (auto& c : column_boxes_)
     c.reserve(64);
@@ -75,24 +80,42 @@ void LidarSimulator::scan(const BoxWorld& world, const Pose3& sensor,
           static_cast<int>(i));
     }
   }
-  std::size_t k = 0;
-  for (int c = 0; c < cols; ++c) {
-    const auto& candidates = column_boxes_[static_cast<std::size_t>(c)];
-    for (int b = 0; b < pattern_.beams; ++b, ++k) {
-      const Vec3& local = directions_[k];
-      const Vec3 dir = R * local;
-      double t = std::numeric_limits<double>::infinity();
-      if (dir.z() < -1e-9) t = -sensor.p.z() / dir.z();  // the ground
-      for (const int i : candidates) {
-        const double tb = ray_box(sensor.p, dir, world.boxes[static_cast<std::size_t>(i)]);
-        if (tb >= 0.0 && tb < t) t = tb;
+  // Cast the two halves of the turn (at the same time when there is a fork-join), then join
+  // them in column order: the same scan either way.
+  const auto cast = [&](int part) {
+    auto& pts = parts_[static_cast<std::size_t>(part)].points;
+    auto& mis = parts_[static_cast<std::size_t>(part)].misses;
+    pts.clear();
+    mis.clear();
+    const int c_begin = part == 0 ? 0 : cols / 2, c_end = part == 0 ? cols / 2 : cols;
+    for (int c = c_begin; c < c_end; ++c) {
+      const auto& candidates = column_boxes_[static_cast<std::size_t>(c)];
+      for (int b = 0; b < pattern_.beams; ++b) {
+        const Vec3& local = directions_[static_cast<std::size_t>(c * pattern_.beams + b)];
+        const Vec3 dir = R * local;
+        double t = std::numeric_limits<double>::infinity();
+        if (dir.z() < -1e-9) t = -sensor.p.z() / dir.z();  // the ground
+        for (const int i : candidates) {
+          const double tb = ray_box(sensor.p, dir, world.boxes[static_cast<std::size_t>(i)]);
+          if (tb >= 0.0 && tb < t) t = tb;
+        }
+        if (t < pattern_.min_range_m) continue;  // too close: the sensor reports nothing
+        const Vec3 end = local * std::min(t, range);
+        const hal::LidarPoint p{static_cast<float>(end.x()), static_cast<float>(end.y()),
+                                static_cast<float>(end.z())};
+        (t <= range ? pts : mis).push_back(p);
       }
-      if (t < pattern_.min_range_m) continue;  // too close: the sensor reports nothing
-      const Vec3 end = local * std::min(t, range);
-      const hal::LidarPoint p{static_cast<float>(end.x()), static_cast<float>(end.y()),
-                              static_cast<float>(end.z())};
-      (t <= range ? points_ : misses_).push_back(p);
     }
+  };
+  if (fork_join_ != nullptr) {
+    fork_join_->run(2, cast);
+  } else {
+    cast(0);
+    cast(1);
+  }
+  for (std::size_t part = 0; part < 2; ++part) {
+    points_.insert(points_.end(), parts_[part].points.begin(), parts_[part].points.end());
+    misses_.insert(misses_.end(), parts_[part].misses.begin(), parts_[part].misses.end());
   }
   points = points_;
   misses = misses_;

@@ -8,7 +8,7 @@ namespace colag::mock {
 // A LiDAR device: the latest scan of a LidarSimulator, handed out once.
 class SimWorld::ScanDevice final : public hal::Lidar {
  public:
-  explicit ScanDevice(const LidarPattern& pattern) : sim_(pattern) {}
+  ScanDevice(const LidarPattern& pattern, ForkJoin* fork_join) : sim_(pattern, fork_join) {}
   void scan(const BoxWorld& world, const Pose3& pose, TimePoint now) {
     sim_.scan(world, pose, points_, misses_);
     stamp_ = now;
@@ -52,8 +52,13 @@ struct SimWorld::Ugv {
   bool collided = false;
 };
 
-SimWorld::SimWorld(const SimWorldConfig& config, BoxWorld world, const hal::Clock& clock)
-    : config_(config), world_(std::move(world)), clock_(clock), rng_(config.seed) {
+SimWorld::SimWorld(const SimWorldConfig& config, BoxWorld world, const hal::Clock& clock,
+                   ForkJoin* fork_join)
+    : config_(config),
+      world_(std::move(world)),
+      clock_(clock),
+      fork_join_(fork_join),
+      rng_(config.seed) {
   camera_ = std::make_unique<Camera>();
   collisions_.reserve(64);
 }
@@ -68,12 +73,12 @@ int SimWorld::add_ugv(const Pose2& start) {
 
 void SimWorld::add_uav(const Vec3& start) {
   uav_ = std::make_unique<UavBody>(config_.uav, start);
-  uav_lidar_ = std::make_unique<ScanDevice>(config_.lidar);
+  uav_lidar_ = std::make_unique<ScanDevice>(config_.lidar, fork_join_);
 }
 
 void SimWorld::enable_ugv_lidars() {
   for (auto& u : ugvs_)
-    u->lidar = std::make_unique<ScanDevice>(config_.lidar);
+    u->lidar = std::make_unique<ScanDevice>(config_.lidar, fork_join_);
 }
 
 hal::CanBus& SimWorld::ugv_can(int i) {

@@ -1,5 +1,6 @@
 #include "colag/mission/mission.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -13,6 +14,7 @@
 #include "colag/platform/lockstep_executor.hpp"
 #include "colag/platform/loopback_transport.hpp"
 #include "colag/platform/monotonic_clock.hpp"
+#include "colag/platform/worker_pool.hpp"
 #include "colag/uav/map_sharer.hpp"
 #include "colag/uav/mapper.hpp"
 #include "colag/uav/uav_supervisor_task.hpp"
@@ -184,6 +186,7 @@ Result<MissionOutcome> run_mission(const MissionConfig& cfg, MissionTrace* trace
   if (!(cfg.max_time_s > 0.0)) return fail("--max-time must be > 0");
   if (!(cfg.predict_horizon_m > 0.0 && cfg.predict_horizon_m <= 20.0))
     return fail("--predict-horizon must be in (0, 20] m");
+  if (cfg.threads < 1 || cfg.threads > 8) return fail("--threads must be in 1..8");
   if (cfg.lidar_columns < 60 || cfg.lidar_columns > static_cast<int>(limits::kMaxLidarColumns)) {
     return fail("--lidar-columns must be in 60.." + std::to_string(limits::kMaxLidarColumns));
   }
@@ -197,7 +200,8 @@ Result<MissionOutcome> run_mission(const MissionConfig& cfg, MissionTrace* trace
   mock::SimWorldConfig wc;
   wc.seed = cfg.seed;
   wc.lidar.columns = cfg.lidar_columns;
-  auto world = std::make_unique<mock::SimWorld>(wc, boxes, ex->clock());
+  platform::WorkerPool pool(cfg.threads - 1);
+  auto world = std::make_unique<mock::SimWorld>(wc, boxes, ex->clock(), &pool);
   WorldTask world_task(*world);
   platform::TransportPump pump(*bus);
   Status st = ex->add({&pump, 10ms, 2ms});
@@ -214,7 +218,7 @@ Result<MissionOutcome> run_mission(const MissionConfig& cfg, MissionTrace* trace
     if (cfg.ablation == Ablation::kNoTimeWindows)
       uc.scheduler.mode = uav::ScheduleMode::kNoTimeWindows;
     uav = std::make_unique<uav::UavSupervisorTask>(uc, *bus, world->uav(), world->uav_lidar(),
-                                                   world->uav_camera(), world->uav());
+                                                   world->uav_camera(), world->uav(), &pool);
   } else {
     reference = std::make_unique<ReferenceFrameTask>(*bus);
   }
@@ -333,37 +337,19 @@ Result<MissionOutcome> run_mission(const MissionConfig& cfg, MissionTrace* trace
     if (trace != nullptr && uav && tick % 5 == 0)
       trace->uav_path.push_back(world->uav().state().pose.p.head<2>());
     if (cfg.progress && tick % 10 == 0) cfg.progress(t / cfg.max_time_s);
-    if (std::getenv("COLAG_DBG_UGV") && tick == 400) {
-      const int k = std::atoi(std::getenv("COLAG_DBG_UGV"));
-      const auto& task = *ugvs[static_cast<std::size_t>(k)].task;
-      const auto& m = task.map();
-      const Vec2 e = task.estimator().pose().p, tr = world->ugv(k).pose().p;
-      std::fprintf(stderr, "est (%.2f %.2f) true (%.2f %.2f) mode %d pred %d t %.1f\n", e.x(),
-                   e.y(), tr.x(), tr.y(), (int)task.mode(), (int)task.prediction().kind,
-                   task.prediction().time_s);
-      const CellIndex c = m.geometry().cell_of(e);
-      for (int dy = 8; dy >= -8; --dy) {
-        for (int dx = -8; dx <= 8; ++dx) {
-          const CellIndex q{c.x + dx, c.y + dy};
-          const auto cs = m.state(q);
-          char ch = cs == CellState::kOccupied ? '#'
-                    : cs == CellState::kUnknown
-                        ? '?'
-                        : (m.predict_blocked(q) ? 'b' : (m.plan_blocked(q) ? 'p' : '.'));
-          if (dx == 0 && dy == 0) ch = 'R';
-          std::fputc(ch, stderr);
-        }
-        std::fputc('\n', stderr);
-      }
-      for (const auto& b : world->world().boxes)
-        if ((b.center - tr).norm() < 2)
-          std::fprintf(stderr, "box (%.2f %.2f) half %.2f\n", b.center.x(), b.center.y(),
-                       b.half_size.x());
-    }
     if (all_done) break;
   }
 
   // Outcome.
+  for (std::size_t i = 0; i < ex->schedule().size(); ++i) {
+    const platform::TaskStats& stats = ex->schedule().stats(i);
+    auto it = std::find_if(out.task_times.begin(), out.task_times.end(),
+                           [&](const TaskTime& t) { return t.name == stats.name; });
+    if (it == out.task_times.end()) it = out.task_times.insert(it, TaskTime{stats.name});
+    it->steps += stats.steps;
+    it->total_s += to_seconds(stats.total_step);
+    it->longest_ms = std::max(it->longest_ms, to_seconds(stats.longest_step) * 1e3);
+  }
   out.sim_time_s = to_seconds(ex->now());
   out.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();

@@ -9,9 +9,15 @@
 //
 // Log-odds are stored as int8 in units of 1/50 (exact, deterministic integer updates):
 // defaults p_hit 0.85, p_miss 0.35, clamped to [0.12, 0.90], occupied at >= 0.80.
+//
+// Two cores: rays ending south of the sensor's voxel row only cross voxels south of it or in
+// it (the same for north), so a scan is traced as two halves that touch disjoint voxels, each
+// up to the sensor's row, then the row itself. Given a ForkJoin the halves run at the same
+// time; the map is the same either way (tested), since the split never depends on it.
 #include <array>
 #include <cstdint>
 
+#include "colag/common/fork_join.hpp"
 #include "colag/common/grid3d.hpp"
 #include "colag/common/static_vector.hpp"
 #include "colag/hal/lidar.hpp"
@@ -24,8 +30,12 @@ struct MapperConfig {
   double p_min = 0.12;
   double p_max = 0.90;
   double p_occupied = 0.80;
-  double max_range_m = 15.0;   // longer returns are treated as misses at this range
-  int early_stop_voxels = 10;  // see Mapper::trace; a huge value traces every ray fully
+  double max_range_m = 15.0;  // longer returns are treated as misses at this range
+  // Early stop of a ray's back-trace (see Mapper::trace): after this many consecutive voxels it
+  // did not change, or after this many consecutive voxels an earlier ray of the same scan
+  // already crossed. Huge values trace every ray fully.
+  int early_stop_voxels = 10;
+  int early_stop_crossed = 3;
 };
 
 enum class VoxelState : std::uint8_t { kUnknown, kFree, kOccupied };
@@ -34,13 +44,17 @@ struct MapperCounters {
   std::uint64_t scans = 0;
   std::uint64_t rays = 0;
   std::uint64_t voxel_updates = 0;
+  std::uint64_t voxel_visits = 0;  // voxels the traces stepped through (incl. early-stop runs)
   std::uint64_t rays_outside = 0;  // sensor outside the grid, or non-finite points
   std::uint64_t rays_merged = 0;   // ended in a voxel an earlier ray of the scan ended in
+  std::uint64_t rays_resumed = 0;  // back-traces finished in the sensor's row (see insert_scan)
 };
 
 class Mapper {
  public:
-  explicit Mapper(const MapperConfig& config = {});
+  // `fork_join` (optional, not owned) lets the tracing of a scan use several cores; the map is
+  // the same with or without it.
+  explicit Mapper(const MapperConfig& config = {}, ForkJoin* fork_join = nullptr);
 
   // Integrates one scan taken from `sensor` (sensor frame -> world).
   void insert_scan(const Pose3& sensor, const hal::LidarScanView& scan);
@@ -59,11 +73,43 @@ class Mapper {
 
  private:
   static constexpr std::int8_t kUnknown = -128;
-  void trace(const Vec3& origin, const Vec3& end, bool hit);
+  struct Ray {
+    Vec3 end = Vec3::Zero();  // world frame, cut at the maximum range and at the grid's edge
+    std::uint32_t voxel = 0;  // linear index of the end voxel
+    std::int16_t row = -1;    // y index of the end voxel; -1: not a usable ray
+    bool hit = false;         // ends on a return
+    bool merged = false;      // an earlier ray of the scan ended in the same voxel (not traced)
+  };
+  // What one part of a scan's insertion did: the two halves south and north of the sensor's
+  // voxel row (part 0 also counts the serial work on the row itself).
+  struct alignas(64) Part {  // aligned: the two halves write their own Part at the same time
+    struct Resume {
+      std::uint32_t ray = 0;
+      std::uint8_t unchanged = 0, crossed = 0;  // the early-stop runs where the ray stopped
+    };
+    StaticVector<Resume, limits::kMaxLidarPoints> resume;  // rays that reached the sensor's row
+    std::uint64_t rays_outside = 0, rays_merged = 0, voxel_updates = 0, voxel_visits = 0;
+  };
+  struct Runs {
+    int unchanged = 0, crossed = 0;
+  };
+  void prepare(const Pose3& sensor, const hal::LidarScanView& scan, std::size_t from,
+               std::size_t to, Part& part);
+  // Merges the rays ending in `row_lo`..`row_hi` by end voxel and applies their hits.
+  void merge_and_hit(int row_lo, int row_hi, Part& part);
+  void trace_half(const Vec3& origin, int sensor_row, int side, Part& part);
+  // Back-traces a->b (a is the ray's end side); false if an early stop ended it.
+  bool trace(const Vec3& a, const Vec3& b, bool first_is_end, bool hit, Runs& runs, Part& part);
   // Applies `delta` once per scan (later calls are ignored); true if the voxel changed.
-  bool update(std::size_t i, std::int8_t delta);
+  bool update(std::size_t i, std::int8_t delta, Part& part);
+  bool touched(std::size_t i) const { return (touched_[i >> 6] >> (i & 63)) & 1U; }
+  // Runs part(0) and part(1), at the same time when the platform gave us a fork-join.
+  template <class F>
+  void both(F&& part);
 
   MapperConfig config_;
+  ForkJoin* fork_join_;
+  bool halves_disjoint_;  // see the constructor
   std::int8_t hit_, miss_, min_, max_, occupied_;
   MapperCounters counters_;
   std::array<std::int8_t, limits::kGridCells3d> logodds_;
@@ -71,12 +117,9 @@ class Mapper {
   // rays of a scan cross the same voxels again and again; cleared at every scan.
   std::array<std::uint64_t, (limits::kGridCells3d + 63) / 64> touched_;
   std::array<std::uint64_t, (limits::kGridCells3d + 63) / 64>
-      ended_;  // a ray of this scan ended here
-  struct Ray {
-    Vec3 end = Vec3::Zero();  // world frame, cut at max range
-    bool hit = false;         // ends on a return
-  };
+      ended_;                                        // a ray of this scan ended here
   StaticVector<Ray, limits::kMaxLidarPoints> rays_;  // the scan being inserted
+  std::array<Part, 2> parts_;
 };
 
 }  // namespace colag::uav

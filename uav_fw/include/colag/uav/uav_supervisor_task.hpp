@@ -73,7 +73,8 @@ class UavSupervisorTask {
  public:
   UavSupervisorTask(const UavSupervisorConfig& config, platform::Transport& transport,
                     hal::OdometrySource& odometry, hal::Lidar& lidar,
-                    hal::RelativePoseSensor& camera, hal::FlightController& flight);
+                    hal::RelativePoseSensor& camera, hal::FlightController& flight,
+                    ForkJoin* fork_join = nullptr);  // optional: lets mapping use more cores
   UavSupervisorTask(const UavSupervisorTask&) = delete;
   UavSupervisorTask& operator=(const UavSupervisorTask&) = delete;
 

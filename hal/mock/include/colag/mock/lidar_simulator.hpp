@@ -5,9 +5,11 @@
 // frame; beams with no return within range are reported as misses at max range (so the mapper
 // can clear free space along them). Boxes are culled per scan by range and azimuth, so a ray
 // is tested only against the few boxes in its direction.
+#include <array>
 #include <span>
 #include <vector>
 
+#include "colag/common/fork_join.hpp"
 #include "colag/hal/lidar.hpp"
 #include "colag/mock/box_world.hpp"
 
@@ -24,7 +26,8 @@ struct LidarPattern {
 
 class LidarSimulator {
  public:
-  explicit LidarSimulator(const LidarPattern& pattern = {});
+  // `fork_join` (optional, not owned): cast the two halves of a turn on two cores.
+  explicit LidarSimulator(const LidarPattern& pattern = {}, ForkJoin* fork_join = nullptr);
 
   // One full scan from `sensor` (sensor frame -> world). The spans stay valid until the next
   // call. Allocates nothing after construction.
@@ -34,8 +37,13 @@ class LidarSimulator {
 
  private:
   LidarPattern pattern_;
+  ForkJoin* fork_join_;
   std::vector<Vec3> directions_;  // unit vectors in the sensor frame, column-major
   std::vector<hal::LidarPoint> points_, misses_;
+  struct alignas(64) Part {  // one cache line each: the two parts push at the same time
+    std::vector<hal::LidarPoint> points, misses;
+  };
+  std::array<Part, 2> parts_;
   std::vector<std::vector<int>> column_boxes_;  // per column: boxes that may be hit
 };
 

@@ -50,7 +50,9 @@ struct CollisionEvent {
 
 class SimWorld {
  public:
-  SimWorld(const SimWorldConfig& config, BoxWorld world, const hal::Clock& clock);
+  // `fork_join` (optional, not owned): the LiDAR simulation may use more cores.
+  SimWorld(const SimWorldConfig& config, BoxWorld world, const hal::Clock& clock,
+           ForkJoin* fork_join = nullptr);
   ~SimWorld();
 
   int add_ugv(const Pose2& start);
@@ -85,6 +87,7 @@ class SimWorld {
   SimWorldConfig config_;
   BoxWorld world_;
   const hal::Clock& clock_;
+  ForkJoin* fork_join_;
   Rng rng_;
   std::vector<std::unique_ptr<Ugv>> ugvs_;
   std::unique_ptr<UavBody> uav_;

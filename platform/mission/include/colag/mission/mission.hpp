@@ -30,6 +30,7 @@ struct MissionConfig {
   double goal_tolerance_m =
       0.5;  // "reached": stopped at the goal with the true position this close
   double predict_horizon_m = 2.0;  // UGV collision-prediction horizon (straight-line distance)
+  int threads = 2;  // cores the simulation may use (1..8); the results do not depend on it
   std::function<void(double fraction)> progress;  // called every simulated second (optional)
 };
 
@@ -45,8 +46,17 @@ struct UgvOutcome {
   std::uint64_t support_requests = 0;
 };
 
+// Host CPU time of one kind of task over the mission (summed over the robots that run it).
+struct TaskTime {
+  std::string name;
+  std::uint64_t steps = 0;
+  double total_s = 0.0;
+  double longest_ms = 0.0;
+};
+
 struct MissionOutcome {
   MissionConfig config;
+  std::vector<TaskTime> task_times;  // in table order of first appearance
   std::vector<UgvOutcome> ugvs;
   // Averages per UGV, as in the paper (reach time over the UGVs that reached).
   double reach_time_s = 0.0;
