@@ -40,7 +40,8 @@ inline constexpr std::size_t kMaxLidarBeams = 32;
 inline constexpr std::size_t kMaxLidarColumns = 1200;  // 0.3 deg horizontal resolution
 inline constexpr std::size_t kMaxLidarPoints = kMaxLidarBeams * kMaxLidarColumns;
 inline constexpr std::size_t kMaxRpeDetectionsPerFrame = kMaxUgvs;
-inline constexpr std::size_t kUavOdometryHistory = 64;  // UGV side, for RPE time matching
+inline constexpr std::size_t kMaxRpeTags = 2 * kMaxUgvs;  // tags the camera knows (2 per UGV)
+inline constexpr std::size_t kUavOdometryHistory = 64;    // UGV side, for RPE time matching
 inline constexpr std::size_t kCanRxQueue = 64;
 
 // --- Runtime -----------------------------------------------------------------------------------
