@@ -29,7 +29,9 @@ struct CanBusImplementation {
   std::function<std::unique_ptr<CanBusPair>(std::string& why)> make;
 };
 
-inline void PrintTo(const CanBusImplementation& i, std::ostream* os) { *os << i.name; }
+inline void PrintTo(const CanBusImplementation& i, std::ostream* os) {
+  *os << i.name;
+}
 
 class CanBusConformance : public ::testing::TestWithParam<CanBusImplementation> {
  protected:

@@ -1,0 +1,42 @@
+#include "colag/board/board_runtime.hpp"
+
+#include <csignal>
+#include <cstdio>
+
+namespace colag::board {
+
+namespace {
+platform::RealtimeExecutor* g_exec = nullptr;
+extern "C" void on_signal(int) {
+  if (g_exec != nullptr) g_exec->request_stop();
+}
+}  // namespace
+
+void stop_on_signals(platform::RealtimeExecutor& exec) {
+  g_exec = &exec;
+  struct sigaction sa {};
+  sa.sa_handler = on_signal;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+}
+
+void print_realtime_setup(const char* program, const platform::RealtimeSetup& setup) {
+  std::printf("%s: SCHED_FIFO %s, mlockall %s\n", program, setup.fifo ? "on" : setup.fifo.message(),
+              setup.memory_lock ? "on" : setup.memory_lock.message());
+}
+
+void print_task_stats(const char* program, const platform::Schedule& schedule) {
+  std::printf("%s: %-14s %10s %9s %8s %12s\n", program, "task", "steps", "overruns", "skipped",
+              "longest ms");
+  for (std::size_t i = 0; i < schedule.size(); ++i) {
+    const platform::TaskStats& s = schedule.stats(i);
+    std::printf("%s: %-14s %10llu %9llu %8llu %12.3f\n", program, s.name,
+                static_cast<unsigned long long>(s.steps),
+                static_cast<unsigned long long>(s.overruns),
+                static_cast<unsigned long long>(s.skipped),
+                std::chrono::duration<double, std::milli>(s.longest_step).count());
+  }
+}
+
+}  // namespace colag::board

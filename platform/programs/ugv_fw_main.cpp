@@ -1,0 +1,119 @@
+// ugv_fw: the UGV board program. SocketCAN wheel encoders and motor controller, Cyclone DDS to
+// the UAV and the other UGVs, the UgvNavTask under the real-time executor.
+//
+//   ugv_fw --config ugv.yaml [--check-config] [--duration SECONDS]
+//
+// Exit codes: 0 clean stop (SIGINT/SIGTERM or --duration), 1 a device or DDS failed to start,
+// 2 a usage or configuration error.
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+
+#include "colag/board/board_config.hpp"
+#include "colag/board/board_runtime.hpp"
+#include "colag/linux/socketcan_bus.hpp"
+#include "colag/platform/dds/dds_transport.hpp"
+#include "colag/ugv/ugv_nav_task.hpp"
+
+using namespace colag;
+
+int main(int argc, char** argv) {
+  std::string config_path;
+  bool check_only = false;
+  double duration_s = 0.0;
+  for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--config") == 0 && i + 1 < argc)
+      config_path = argv[++i];
+    else if (std::strcmp(argv[i], "--check-config") == 0)
+      check_only = true;
+    else if (std::strcmp(argv[i], "--duration") == 0 && i + 1 < argc)
+      duration_s = std::atof(argv[++i]);
+    else {
+      std::fprintf(stderr, "usage: ugv_fw --config FILE.yaml [--check-config] [--duration S]\n");
+      return 2;
+    }
+  }
+  if (config_path.empty()) {
+    std::fprintf(stderr, "ugv_fw: --config FILE.yaml is required\n");
+    return 2;
+  }
+  board::UgvBoardConfig cfg;
+  std::string error;
+  if (!board::load_ugv_config(config_path, cfg, error)) {
+    std::fprintf(stderr, "ugv_fw: %s\n", error.c_str());
+    return 2;
+  }
+  std::printf("ugv_fw: UGV %d, goal (%.2f, %.2f), CAN %s (ids 0x%x/0x%x/0x%x), DDS domain %u\n",
+              cfg.nav.id, cfg.nav.goal.x(), cfg.nav.goal.y(), cfg.can_interface.c_str(),
+              cfg.protocol.counts_id, cfg.protocol.speeds_id, cfg.protocol.command_id,
+              cfg.common.dds_domain);
+  if (check_only) return 0;
+
+  platform::RealtimeExecutor exec;
+  linux_hal::SocketCanConfig can_cfg;
+  can_cfg.interface = cfg.can_interface;
+  const std::uint32_t mask = cfg.protocol.extended_ids ? 0x1FFFFFFFu : 0x7FFu;
+  (void)can_cfg.filters.push_back({cfg.protocol.counts_id, mask, cfg.protocol.extended_ids});
+  (void)can_cfg.filters.push_back({cfg.protocol.speeds_id, mask, cfg.protocol.extended_ids});
+  linux_hal::SocketCanBus bus(can_cfg, exec.clock());
+  if (const Status s = bus.open(); !s) {
+    std::fprintf(stderr, "ugv_fw: %s: %s (%s)\n", cfg.can_interface.c_str(), s.message(),
+                 std::strerror(bus.driver_stats().last_errno));
+    return 1;
+  }
+  hal::can::CanWheelOdometry odometry(bus, cfg.protocol, cfg.wheels);
+  hal::can::CanDrive drive(bus, cfg.protocol, cfg.wheels);
+
+  platform::dds::DdsTransport dds;
+  platform::dds::DdsConfig dds_cfg;
+  dds_cfg.domain_id = cfg.common.dds_domain;
+  dds_cfg.partition = cfg.common.dds_partition.c_str();
+  dds_cfg.publishes = {};  // a UGV announces only what it sends
+  dds_cfg.publishes[static_cast<std::size_t>(msg::Topic::kUgvStatus)] = true;
+  dds_cfg.publishes[static_cast<std::size_t>(msg::Topic::kCollisionInfo)] = true;
+  if (const Status s = dds.init(dds_cfg); !s) {
+    std::fprintf(stderr, "ugv_fw: DDS: %s\n", s.message());
+    (void)drive.stop(exec.clock().now());
+    return 1;
+  }
+
+  ugv::UgvNavTask task(cfg.nav, dds, odometry, drive);
+  platform::TransportPump pump(dds);
+  Status st = exec.add({&pump, cfg.control_period, cfg.control_period / 4});
+  if (st) st = exec.add({&task.control_loop(), cfg.control_period, cfg.control_period / 4});
+  if (st)
+    st = exec.add({&task.planning_loop(), cfg.planning_period, cfg.planning_period / 2,
+                   cfg.control_period / 2});
+  board::print_realtime_setup("ugv_fw", exec.apply(cfg.common.realtime));
+  if (st) st = exec.init();
+  if (!st) {
+    std::fprintf(stderr, "ugv_fw: start-up: %s\n", st.message());
+    (void)drive.stop(exec.clock().now());
+    return 1;
+  }
+  board::stop_on_signals(exec);
+  const TimePoint end = duration_s > 0.0
+                            ? exec.clock().now() + std::chrono::duration_cast<Duration>(
+                                                       std::chrono::duration<double>(duration_s))
+                            : TimePoint::max();
+  exec.run_until(end);
+  // Motors first: zero speed (sent twice: a single lost frame must not leave them running;
+  // the controller's own 200 ms command timeout is the last line).
+  const Status stopped = drive.stop(exec.clock().now());
+  (void)drive.stop(exec.clock().now());
+  std::printf("ugv_fw: stopping; motors commanded to zero%s\n",
+              stopped ? "" : " (send failed: the controller's command timeout stops them)");
+  board::print_task_stats("ugv_fw", exec.schedule());
+  const auto& c = odometry.counters();
+  std::printf(
+      "ugv_fw: CAN rx %llu, tx %llu, tx failures %llu, bad frames %llu, lost %llu, "
+      "watchdog trips %llu\n",
+      static_cast<unsigned long long>(bus.stats().rx_frames),
+      static_cast<unsigned long long>(bus.stats().tx_frames),
+      static_cast<unsigned long long>(bus.stats().tx_failures),
+      static_cast<unsigned long long>(c.bad_checksum + c.wrong_dlc + c.unknown_id),
+      static_cast<unsigned long long>(c.lost_frames),
+      static_cast<unsigned long long>(task.health().watchdog_trips));
+  return 0;
+}

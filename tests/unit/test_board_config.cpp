@@ -1,0 +1,143 @@
+// The board programs' YAML configuration: values, defaults, and errors that name the key.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "colag/board/board_config.hpp"
+
+namespace colag::board {
+namespace {
+
+class BoardConfig : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = std::filesystem::temp_directory_path() / ("colag_board_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir_);
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  std::string write(const std::string& name, const std::string& text) {
+    const auto path = (dir_ / name).string();
+    std::ofstream(path) << text;
+    return path;
+  }
+  std::string ugv_error(const std::string& text) {
+    UgvBoardConfig c;
+    std::string error;
+    EXPECT_FALSE(load_ugv_config(write("ugv.yaml", text), c, error)) << text;
+    return error;
+  }
+  std::filesystem::path dir_;
+};
+
+TEST_F(BoardConfig, ReadsEveryUgvKey) {
+  UgvBoardConfig c;
+  std::string error;
+  ASSERT_TRUE(load_ugv_config(write("ugv.yaml", R"(
+robot: {id: 3, goal: [2.0, -16.0], start_guess: [2.0, 16.0, -1.57], radius_m: 0.3}
+dds: {domain: 7, partition: lab}
+realtime: {fifo_priority: 60, lock_memory: false}
+can: {interface: vcan1, counts_id: 0x301, speeds_id: 0x302, command_id: 0x401}
+wheels: {radius_m: 0.08, track_m: 0.5, ticks_per_rev: 2048, max_speed_mps: 1.2}
+rates: {control_hz: 100, planning_hz: 5}
+odometry: {timeout_ms: 80, sigma_v: 0.05, sigma_omega: 0.04}
+)"),
+                              c, error))
+      << error;
+  EXPECT_EQ(c.nav.id, 3);
+  EXPECT_EQ(c.nav.goal, Vec2(2.0, -16.0));
+  EXPECT_TRUE(c.nav.has_start_guess);
+  EXPECT_DOUBLE_EQ(c.nav.start_guess.yaw_rad, -1.57);
+  EXPECT_DOUBLE_EQ(c.nav.body_radius_m, 0.3);
+  EXPECT_EQ(c.common.dds_domain, 7u);
+  EXPECT_EQ(c.common.dds_partition, "lab");
+  EXPECT_EQ(c.common.realtime.fifo_priority, 60);
+  EXPECT_FALSE(c.common.realtime.lock_memory);
+  EXPECT_EQ(c.can_interface, "vcan1");
+  EXPECT_EQ(c.protocol.counts_id, 0x301u);
+  EXPECT_EQ(c.protocol.command_id, 0x401u);
+  EXPECT_DOUBLE_EQ(c.wheels.wheel_radius_m, 0.08);
+  EXPECT_EQ(c.wheels.ticks_per_revolution, 2048u);
+  EXPECT_EQ(c.control_period, std::chrono::milliseconds(10));
+  EXPECT_EQ(c.planning_period, std::chrono::milliseconds(200));
+  EXPECT_EQ(c.nav.odometry_timeout, std::chrono::milliseconds(80));
+  EXPECT_DOUBLE_EQ(c.nav.ekf.noise.sigma_v_mps, 0.05);
+}
+
+TEST_F(BoardConfig, EmptyFileMeansDefaults) {
+  UgvBoardConfig c;
+  std::string error;
+  ASSERT_TRUE(load_ugv_config(write("empty.yaml", ""), c, error)) << error;
+  EXPECT_EQ(c.can_interface, "can0");
+  EXPECT_EQ(c.control_period, std::chrono::milliseconds(20));
+  EXPECT_EQ(c.nav.odometry_timeout, std::chrono::milliseconds(100));
+}
+
+TEST_F(BoardConfig, ErrorsNameTheKeyAndTheProblem) {
+  EXPECT_NE(ugv_error("can: {interface: [a, b]}").find("can.interface: expected a string"),
+            std::string::npos);
+  EXPECT_NE(ugv_error("robot: {id: 40}").find("robot.id: out of range [1, 16]"), std::string::npos);
+  EXPECT_NE(ugv_error("wheels: {radius_m: fast}").find("wheels.radius_m: expected a number"),
+            std::string::npos);
+  EXPECT_NE(ugv_error("wheel: {radius_m: 0.1}").find("wheel: unknown key"), std::string::npos);
+  EXPECT_NE(ugv_error("can: {intreface: can1}").find("can.intreface: unknown key"),
+            std::string::npos);
+  EXPECT_NE(ugv_error("robot: {goal: [1.0]}").find("robot.goal: expected a list of 2 numbers"),
+            std::string::npos);
+  EXPECT_NE(ugv_error("can: {counts_id: 0x800}").find("can.counts_id: out of range"),
+            std::string::npos);
+  EXPECT_NE(ugv_error("can: {speeds_id: 0x101}").find("must differ"), std::string::npos);
+  EXPECT_NE(ugv_error("rates: {control_hz: 0}").find("rates.control_hz: out of range"),
+            std::string::npos);
+  EXPECT_NE(ugv_error("robot: {id: 1\n  goal: ]").find("line "), std::string::npos);
+  EXPECT_NE(ugv_error("- 1\n- 2").find("(top level): expected a mapping"), std::string::npos);
+  UgvBoardConfig c;
+  std::string error;
+  EXPECT_FALSE(load_ugv_config((dir_ / "none.yaml").string(), c, error));
+  EXPECT_NE(error.find("cannot open"), std::string::npos);
+}
+
+TEST_F(BoardConfig, UavConfigWithCalibrationAndTags) {
+  write("cam.yaml",
+        "%YAML:1.0\nimage_width: 1280\nimage_height: 720\ncamera_matrix: !!opencv-matrix\n"
+        "  rows: 3\n  cols: 3\n  dt: d\n  data: [900, 0, 640, 0, 900, 360, 0, 0, 1]\n");
+  UavBoardConfig c;
+  std::string error;
+  ASSERT_TRUE(load_uav_config(write("uav.yaml", R"(
+robot: {id: 0}
+camera:
+  device: /dev/video2
+  calibration: cam.yaml
+  tag_size_m: 0.2
+  mount: downward
+  mount_xyz: [0.1, 0.0, -0.05]
+  tags:
+    - {tag: 5, ugv: 1, height_m: 0.25}
+    - {tag: 6, ugv: 2}
+)"),
+                              c, error))
+      << error;
+  EXPECT_EQ(c.camera.uri, "/dev/video2");
+  EXPECT_EQ(c.rpe.camera.width, 1280);
+  EXPECT_DOUBLE_EQ(c.rpe.camera.fx, 900.0);
+  EXPECT_DOUBLE_EQ(c.rpe.tag_size_m, 0.2);
+  ASSERT_EQ(c.rpe.tags.size(), 2u);
+  EXPECT_EQ(c.rpe.tags[0].tag_id, 5);
+  EXPECT_EQ(c.rpe.tags[1].ugv_id, 2);
+  EXPECT_NEAR(c.rpe.tags[0].tag_in_body.p.z(), 0.25, 1e-12);
+  // The downward camera looks along the UAV's -z.
+  EXPECT_NEAR((c.rpe.camera_in_uav.q * Vec3::UnitZ() - Vec3(0, 0, -1)).norm(), 0.0, 1e-12);
+
+  EXPECT_FALSE(load_uav_config(write("u2.yaml", "camera: {device: x}"), c, error));
+  EXPECT_NE(error.find("camera.calibration: required"), std::string::npos) << error;
+  EXPECT_FALSE(load_uav_config(write("u3.yaml", "camera: {calibration: nothere.yaml}"), c, error));
+  EXPECT_NE(error.find("camera.calibration:"), std::string::npos) << error;
+  EXPECT_NE(error.find("cannot open"), std::string::npos) << error;
+  EXPECT_FALSE(load_uav_config(
+      write("u4.yaml", "camera: {calibration: cam.yaml, tags: [{tag: 700, ugv: 1}]}"), c, error));
+  EXPECT_NE(error.find("camera.tags[0].tag: out of range"), std::string::npos) << error;
+}
+
+}  // namespace
+}  // namespace colag::board
