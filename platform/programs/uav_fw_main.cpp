@@ -17,7 +17,7 @@
 #include <cstring>
 #include <string>
 
-#include "colag/board/board_config.hpp"
+#include "colag/board/uav_board_config.hpp"
 #include "colag/board/board_runtime.hpp"
 
 using namespace colag;

@@ -10,7 +10,7 @@
 #include <cstring>
 #include <string>
 
-#include "colag/board/board_config.hpp"
+#include "colag/board/ugv_board_config.hpp"
 #include "colag/board/board_runtime.hpp"
 #include "colag/linux/socketcan_bus.hpp"
 #include "colag/platform/dds/dds_transport.hpp"

@@ -5,7 +5,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "colag/board/board_config.hpp"
+#include "colag/board/uav_board_config.hpp"
+#include "colag/board/ugv_board_config.hpp"
 
 namespace colag::board {
 namespace {

@@ -1,0 +1,21 @@
+#pragma once
+// uav_fw's configuration (see common_config.hpp for the rules, config/uav.example.yaml for keys).
+#include <string>
+
+#include "colag/board/common_config.hpp"
+#include "colag/linux/camera_rpe.hpp"
+
+namespace colag::board {
+
+struct UavBoardConfig {
+  CommonBoardConfig common;
+  RobotId id = 0;
+  linux_hal::TagPoseConfig rpe;
+  linux_hal::CameraSource camera;
+  std::string calibration_file;  // OpenCV calibration YAML, required
+};
+
+// False with `error` = "FILE: key.path: problem".
+bool load_uav_config(const std::string& path, UavBoardConfig& out, std::string& error);
+
+}  // namespace colag::board
