@@ -17,8 +17,8 @@
 #include <cstring>
 #include <string>
 
-#include "colag/board/uav_board_config.hpp"
 #include "colag/board/board_runtime.hpp"
+#include "colag/board/uav_board_config.hpp"
 
 using namespace colag;
 

@@ -10,8 +10,8 @@
 #include <cstring>
 #include <string>
 
-#include "colag/board/ugv_board_config.hpp"
 #include "colag/board/board_runtime.hpp"
+#include "colag/board/ugv_board_config.hpp"
 #include "colag/linux/socketcan_bus.hpp"
 #include "colag/platform/dds/dds_transport.hpp"
 #include "colag/ugv/ugv_nav_task.hpp"
