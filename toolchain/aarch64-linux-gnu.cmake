@@ -17,11 +17,24 @@ set(CMAKE_FIND_ROOT_PATH_MODE_INCLUDE ONLY)
 # BOTH: header-only packages (Eigen) are architecture-independent and may come from the host.
 set(CMAKE_FIND_ROOT_PATH_MODE_PACKAGE BOTH)
 if(EXISTS "${COLAG_SYSROOT}")
-  foreach(dir lib/aarch64-linux-gnu usr/lib/aarch64-linux-gnu)
-    string(APPEND CMAKE_EXE_LINKER_FLAGS_INIT " -Wl,-rpath-link,${COLAG_SYSROOT}/${dir}")
+  # scripts/sysroot-arm64.sh lists every folder with shared libraries in rpath-link.txt.
+  set(colag_link_dirs lib/aarch64-linux-gnu usr/lib/aarch64-linux-gnu)
+  if(EXISTS "${COLAG_SYSROOT}/rpath-link.txt")
+    file(STRINGS "${COLAG_SYSROOT}/rpath-link.txt" colag_link_dirs)
+  endif()
+  set(colag_link_flags "")
+  foreach(dir ${colag_link_dirs})
+    string(APPEND colag_link_flags " -Wl,-rpath-link,${COLAG_SYSROOT}/${dir}")
   endforeach()
+  set(CMAKE_EXE_LINKER_FLAGS_INIT "${colag_link_flags}")  # set, not append: read more than once
   include_directories(SYSTEM "${COLAG_SYSROOT}/usr/include/aarch64-linux-gnu")
 endif()
 
 # binfmt_misc is not mounted on the build machines: ctest runs target programs through qemu.
-set(CMAKE_CROSSCOMPILING_EMULATOR qemu-aarch64-static;-L;/usr/aarch64-linux-gnu)
+# The sysroot's shared libraries are found through LD_LIBRARY_PATH inside the emulated process.
+set(colag_library_path "${COLAG_SYSROOT}/lib/aarch64-linux-gnu:${COLAG_SYSROOT}/usr/lib/aarch64-linux-gnu")
+foreach(dir ${colag_link_dirs})
+  string(APPEND colag_library_path ":${COLAG_SYSROOT}/${dir}")
+endforeach()
+set(CMAKE_CROSSCOMPILING_EMULATOR qemu-aarch64-static;-L;/usr/aarch64-linux-gnu;-E;
+    LD_LIBRARY_PATH=${colag_library_path})

@@ -214,7 +214,10 @@ TEST(UavSupervisorTask, HoverTimeoutGivesOthersATurn) {
     rig.request(1, b, 50.0);
     rig.ex.run_until(rig.ex.now() + 1s);
   }
-  EXPECT_LT(rig.distance_to(b), 3.0);  // circling b at 2 m
+  // Circling b: the orbit is a point moving round a 2 m circle that the flight planner chases
+  // with a 1.5 m lookahead, so the distance swings between ~1 and ~3.6 m (and differs between
+  // x86-64 and aarch64 rounding); what matters is that b is being served.
+  EXPECT_LT(rig.distance_to(b), 4.0);
   EXPECT_EQ(rig.uav->mode(), UavMode::kHover);
   // UGV 0's turn comes back after the cooldown (20 s): it is not abandoned.
   for (int i = 0; i < 30 && rig.distance_to(a) > 3.0; ++i) {
