@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <optional>
 #include <string>
 
 #include "colag/board/board_runtime.hpp"
@@ -78,7 +79,10 @@ int main(int argc, char** argv) {
     return 1;
   }
 
-  ugv::UgvNavTask task(cfg.nav, dds, odometry, drive);
+  // The task holds the robot's maps (~6 MB): static storage, not main's stack, so the footprint
+  // is fixed at link time (`size ugv_fw` shows it in .bss) and cannot overflow the stack.
+  static std::optional<ugv::UgvNavTask> task_storage;
+  ugv::UgvNavTask& task = task_storage.emplace(cfg.nav, dds, odometry, drive);
   platform::TransportPump pump(dds);
   Status st = exec.add({&pump, cfg.control_period, cfg.control_period / 4});
   if (st) st = exec.add({&task.control_loop(), cfg.control_period, cfg.control_period / 4});
