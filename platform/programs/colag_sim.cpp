@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <fstream>
+#include <tuple>
 
 #include "colag/mission/mission.hpp"
 #include "mission_png.hpp"
@@ -77,6 +78,20 @@ int main(int argc, char** argv) {
   app.add_option("--threads", cfg.threads,
                  "cores the simulation may use (the results are the same for any number)")
       ->check(CLI::Range(1, 8));
+  // Fault injection.
+  double loss_pct = 0.0, odom_bias_pct = 0.0;
+  std::string uav_blackout, rpe_blackout;
+  auto* faults = app.add_option_group("faults", "fault injection");
+  faults->add_option("--loss", loss_pct, "share of messages lost, % (every topic)")
+      ->check(CLI::Range(0.0, 100.0));
+  faults->add_option("--latency-ms", cfg.faults.latency_ms, "network latency, ms")
+      ->check(CLI::Range(0.0, 10000.0));
+  faults->add_option("--jitter-ms", cfg.faults.jitter_ms, "+ uniform jitter, ms (reorders)")
+      ->check(CLI::Range(0.0, 10000.0));
+  faults->add_option("--uav-blackout", uav_blackout, "T0:T1 s: the UAV is silent (all its topics)");
+  faults->add_option("--rpe-blackout", rpe_blackout, "T0:T1 s: no relative poses");
+  faults->add_option("--odom-bias", odom_bias_pct, "wheel-encoder scale error, %")
+      ->check(CLI::Range(-49.0, 49.0));
   app.add_option("--json", json_path, "write the metrics as JSON to this file");
   app.add_option("--png", png_path, "draw the mission into this PNG file");
   app.add_flag("--quiet", quiet, "no progress bar, no table");
@@ -88,6 +103,17 @@ int main(int argc, char** argv) {
     cfg.map_file = map_file;
   }
   mission::parse_ablation(ablation, cfg.ablation);
+  cfg.faults.loss = loss_pct / 100.0;
+  cfg.faults.odom_bias = odom_bias_pct / 100.0;
+  for (const auto& [text, window, name] :
+       {std::tuple{uav_blackout, &cfg.faults.uav_blackout, "--uav-blackout"},
+        std::tuple{rpe_blackout, &cfg.faults.rpe_blackout, "--rpe-blackout"}}) {
+    if (!text.empty() && !mission::parse_window(text, *window)) {
+      std::fprintf(stderr, "colag_sim: %s: expected T0:T1 in seconds with 0 <= T0 < T1, got '%s'\n",
+                   name, text.c_str());
+      return 2;
+    }
+  }
 
   const bool bar = !quiet && isatty(STDERR_FILENO);
   if (bar) {

@@ -70,6 +70,50 @@ TEST(Mission, WithoutRelativePoseUpdatesTheBlindUgvsDoNotMakeIt) {
   EXPECT_GT(waiting, 60.0);
 }
 
+TEST(Mission, LossyLateNetworkStillNoCollision) {
+  // 30 % of every message lost and 300 ms late (issue 8's seeded case).
+  MissionConfig cfg;
+  cfg.scenario = "dense";
+  cfg.ugvs = 5;
+  cfg.seed = 1;
+  cfg.max_time_s = 250;
+  cfg.faults.loss = 0.3;
+  cfg.faults.latency_ms = 300;
+  expect_all_reached_safely(run(cfg));
+}
+
+TEST(Mission, UavBlackoutStopsTheUgvsThenTheyGoOn) {
+  // The UAV silent from 20 s to 40 s: without relative poses the UGVs' uncertainty grows until
+  // their 3-sigma ellipses would touch the map, so they stop rather than drive blind, and all
+  // reach once the UAV is back.
+  MissionConfig cfg;
+  cfg.scenario = "dense";
+  cfg.ugvs = 5;
+  cfg.seed = 1;
+  cfg.max_time_s = 250;
+  cfg.faults.uav_blackout = {20.0, 40.0};
+  const MissionOutcome o = run(cfg);
+  expect_all_reached_safely(o);
+  EXPECT_GT(o.max_waiting_time_s, 10.0);  // someone sat out most of the blackout
+  EXPECT_GT(o.reach_time_s, 40.0);
+}
+
+TEST(Mission, FaultWindowsAreValidated) {
+  TimeWindow w;
+  EXPECT_TRUE(parse_window("20:40", w));
+  EXPECT_DOUBLE_EQ(w.from_s, 20.0);
+  EXPECT_DOUBLE_EQ(w.to_s, 40.0);
+  EXPECT_FALSE(parse_window("40:20", w));
+  EXPECT_FALSE(parse_window("20", w));
+  EXPECT_FALSE(parse_window("a:b", w));
+  EXPECT_FALSE(parse_window("-1:5", w));
+  MissionConfig cfg;
+  cfg.faults.loss = 1.5;
+  std::string error;
+  EXPECT_FALSE(run_mission(cfg, nullptr, &error));
+  EXPECT_NE(error.find("--loss"), std::string::npos);
+}
+
 TEST(Mission, SameSeedSameMissionBitForBit) {
   MissionConfig cfg;
   cfg.scenario = "dense";

@@ -42,7 +42,7 @@ void UgvBody::step(TimePoint now, double dt, hal::CanBus& bus) {
 
   // Encoders: what the wheels did, plus the odometry noise while moving (correlated between
   // the wheels so that v and omega get exactly sigma_v and sigma_omega).
-  double mv = v, mw = w;
+  double mv = v * (1.0 + config_.encoder_bias), mw = w * (1.0 + config_.encoder_bias);
   if (moving) {
     mv += rng_.gaussian(0.0, config_.odometry_noise.sigma_v_mps);
     mw += rng_.gaussian(0.0, config_.odometry_noise.sigma_omega_radps);

@@ -40,6 +40,19 @@ const char* to_string(Ablation a) {
   return "?";
 }
 
+bool parse_window(const std::string& s, TimeWindow& out) {
+  const auto colon = s.find(':');
+  if (colon == std::string::npos) return false;
+  char* end = nullptr;
+  const std::string a = s.substr(0, colon), b = s.substr(colon + 1);
+  const double from = std::strtod(a.c_str(), &end);
+  if (a.empty() || *end != '\0') return false;
+  const double to = std::strtod(b.c_str(), &end);
+  if (b.empty() || *end != '\0' || !(from >= 0.0) || !(to > from)) return false;
+  out = {from, to};
+  return true;
+}
+
 bool parse_ablation(const std::string& s, Ablation& out) {
   for (Ablation a : {Ablation::kNone, Ablation::kNoRpe, Ablation::kNoUncertainty,
                      Ablation::kNoScheduling, Ablation::kNoTimeWindows}) {
@@ -59,6 +72,26 @@ constexpr double kStartY = 16.0, kGoalY = -16.0;
 // UGV i's lane: x = 0, -2, 2, -4, 4, ...
 double lane_x(int i) {
   return (i % 2 == 1 ? -2.0 : 2.0) * ((i + 1) / 2);
+}
+
+// The faults in force at simulated time t (checked every 100 ms of the run).
+void apply_faults(const FaultConfig& fc, double t, platform::LoopbackTransport& bus) {
+  if (!fc.any()) return;
+  platform::LinkFaults base;
+  base.drop_probability = fc.loss;
+  base.latency = std::chrono::microseconds(std::llround(fc.latency_ms * 1000.0));
+  base.jitter = std::chrono::microseconds(std::llround(fc.jitter_ms * 1000.0));
+  platform::LinkFaults lost = base;
+  lost.drop_probability = 1.0;
+  const bool uav_out = fc.uav_blackout.contains(t);
+  const bool rpe_out = uav_out || fc.rpe_blackout.contains(t);
+  for (std::size_t i = 0; i < msg::kTopicCount; ++i) {
+    const auto topic = static_cast<msg::Topic>(i);
+    const bool from_uav = topic == msg::Topic::kUavOdometry || topic == msg::Topic::kRelativePose ||
+                          topic == msg::Topic::kMapPatch || topic == msg::Topic::kSupportPlan;
+    const bool out = topic == msg::Topic::kRelativePose ? rpe_out : (from_uav && uav_out);
+    bus.set_faults(topic, out ? lost : base);
+  }
 }
 
 class WorldTask final : public platform::Task {
@@ -190,6 +223,13 @@ Result<MissionOutcome> run_mission(const MissionConfig& cfg, MissionTrace* trace
   if (cfg.lidar_columns < 60 || cfg.lidar_columns > static_cast<int>(limits::kMaxLidarColumns)) {
     return fail("--lidar-columns must be in 60.." + std::to_string(limits::kMaxLidarColumns));
   }
+  const FaultConfig& fc = cfg.faults;
+  if (!(fc.loss >= 0.0 && fc.loss <= 1.0)) return fail("--loss must be in 0..100 %");
+  if (!(fc.latency_ms >= 0.0 && fc.latency_ms <= 10000.0 && fc.jitter_ms >= 0.0 &&
+        fc.jitter_ms <= 10000.0))
+    return fail("--latency-ms and --jitter-ms must be in 0..10000");
+  if (!(fc.odom_bias > -0.5 && fc.odom_bias < 0.5))
+    return fail("--odom-bias must be in (-50, 50) %");
   mock::BoxWorld boxes;
   if (!build_world(cfg, boxes, error)) return fail(error);
 
@@ -200,6 +240,7 @@ Result<MissionOutcome> run_mission(const MissionConfig& cfg, MissionTrace* trace
   mock::SimWorldConfig wc;
   wc.seed = cfg.seed;
   wc.lidar.columns = cfg.lidar_columns;
+  wc.ugv.encoder_bias = fc.odom_bias;
   platform::WorkerPool pool(cfg.threads - 1);
   auto world = std::make_unique<mock::SimWorld>(wc, boxes, ex->clock(), &pool);
   WorldTask world_task(*world);
@@ -295,6 +336,7 @@ Result<MissionOutcome> run_mission(const MissionConfig& cfg, MissionTrace* trace
   int tick = 0;
   std::vector<int> open_stops(ugvs.size(), -1);  // index of each UGV's current stop in the trace
   while (ex->now() < end) {
+    apply_faults(fc, to_seconds(ex->now()), *bus);
     ex->run_until(ex->now() + 100ms);
     ++tick;
     const double t = to_seconds(ex->now());
@@ -408,6 +450,15 @@ Result<MissionOutcome> run_mission(const MissionConfig& cfg, MissionTrace* trace
 std::string to_json(const MissionOutcome& o, bool include_wall_time) {
   nlohmann::ordered_json j;
   j["seed"] = o.config.seed;
+  if (o.config.faults.any()) {
+    const FaultConfig& f = o.config.faults;
+    j["faults"] = {{"loss", f.loss},
+                   {"latency_ms", f.latency_ms},
+                   {"jitter_ms", f.jitter_ms},
+                   {"uav_blackout_s", {f.uav_blackout.from_s, f.uav_blackout.to_s}},
+                   {"rpe_blackout_s", {f.rpe_blackout.from_s, f.rpe_blackout.to_s}},
+                   {"odom_bias", f.odom_bias}};
+  }
   j["scenario"] = o.config.scenario == "file" ? o.config.map_file : o.config.scenario;
   j["ablation"] = to_string(o.config.ablation);
   j["self_perception"] = o.config.self_perception;

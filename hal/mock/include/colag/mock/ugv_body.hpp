@@ -20,6 +20,7 @@ struct UgvBodyConfig {
   double motion_noise_fraction = 0.01;
   OdometryNoise odometry_noise;  // sigma_v, sigma_omega used; fractions ignored
   Duration command_timeout = std::chrono::milliseconds(200);
+  double encoder_bias = 0.0;  // fault injection: encoders report (1 + bias) x the wheels' motion
 };
 
 class UgvBody {

@@ -18,6 +18,28 @@ enum class Ablation { kNone, kNoRpe, kNoUncertainty, kNoScheduling, kNoTimeWindo
 const char* to_string(Ablation a);
 bool parse_ablation(const std::string& s, Ablation& out);
 
+// A simulated-time interval [from_s, to_s); empty when to_s <= from_s.
+struct TimeWindow {
+  double from_s = 0.0, to_s = 0.0;
+  bool contains(double t) const { return t >= from_s && t < to_s; }
+  bool empty() const { return !(to_s > from_s); }
+};
+bool parse_window(const std::string& s, TimeWindow& out);  // "T0:T1" in seconds
+
+// Fault injection (issue 8): network faults on every topic of the loopback transport, outages
+// of the UAV (all its topics) or of its relative poses alone, and a wheel-encoder scale error.
+struct FaultConfig {
+  double loss = 0.0;  // share of samples dropped, 0..1
+  double latency_ms = 0.0, jitter_ms = 0.0;
+  TimeWindow uav_blackout;  // odometry, relative poses, map patches and plans all lost
+  TimeWindow rpe_blackout;  // relative poses lost
+  double odom_bias = 0.0;   // the encoders report (1 + bias) x the true motion
+  bool any() const {
+    return loss > 0.0 || latency_ms > 0.0 || jitter_ms > 0.0 || !uav_blackout.empty() ||
+           !rpe_blackout.empty() || odom_bias != 0.0;
+  }
+};
+
 struct MissionConfig {
   std::string scenario = "dense";  // "sparse" (40 boxes), "dense" (80 boxes), or "file"
   std::string map_file;            // PCD, when scenario == "file"
@@ -31,6 +53,7 @@ struct MissionConfig {
       0.5;  // "reached": stopped at the goal with the true position this close
   double predict_horizon_m = 2.0;  // UGV collision-prediction horizon (straight-line distance)
   int threads = 2;  // cores the simulation may use (1..8); the results do not depend on it
+  FaultConfig faults;
   std::function<void(double fraction)> progress;  // called every simulated second (optional)
 };
 
