@@ -1,8 +1,6 @@
 #include "bench_tables.hpp"
 
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
+#include "mission_pool.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,34 +8,22 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
-#include <sstream>
-#include <thread>
 #include <vector>
-
-extern char** environ;
 
 namespace colag::programs {
 
 namespace {
 
-struct Config {
-  std::string scenario;
-  int ugvs = 1;
-  std::string ablation = "none";
-  bool self_perception = false;
-  std::string key() const {
-    return scenario + "/" + std::to_string(ugvs) + "/" + ablation + (self_perception ? "/sp" : "");
-  }
-};
-
-struct Run {
-  Config config;
-  int seed = 0;
-  std::string json_path;
-  pid_t pid = 0;
-  bool ok = false;
-  nlohmann::json result;
-};
+using Config = MissionSpec;
+Config spec(const std::string& scenario, int ugvs, const std::string& ablation, bool sp) {
+  Config c;
+  c.scenario = scenario;
+  c.ugvs = ugvs;
+  c.ablation = ablation;
+  c.self_perception = sp;
+  return c;
+}
+using Run = MissionRun;
 
 // The paper's numbers (reference/paper-results.md).
 struct PaperRow {
@@ -64,44 +50,6 @@ const std::map<std::string, std::string> kTable2 = {
     {"no-time-windows", "reach 132.43  wait 18.29  max 46.65  UGV 34.81  UAV 238.56"},
 };
 
-std::string sim_path(const TablesOptions& o) {
-  if (!o.sim.empty()) return o.sim;
-  char self[4096];
-  const ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
-  if (n <= 0) return "colag_sim";
-  std::string dir(self, static_cast<std::size_t>(n));
-  return dir.substr(0, dir.rfind('/')) + "/colag_sim";
-}
-
-bool start(Run& r, const std::string& sim, double max_time, int threads) {
-  std::vector<std::string> args = {sim,          "--quiet",
-                                   "--threads",  std::to_string(threads),
-                                   "--scenario", r.config.scenario,
-                                   "--ugvs",     std::to_string(r.config.ugvs),
-                                   "--seed",     std::to_string(r.seed),
-                                   "--ablation", r.config.ablation,
-                                   "--max-time", std::to_string(max_time),
-                                   "--json",     r.json_path};
-  if (r.config.self_perception) args.push_back("--self-perception");
-  std::vector<char*> argv;
-  for (auto& a : args)
-    argv.push_back(a.data());
-  argv.push_back(nullptr);
-  return posix_spawn(&r.pid, sim.c_str(), nullptr, nullptr, argv.data(), environ) == 0;
-}
-
-struct Mean {
-  double sum = 0;
-  int n = 0;
-  void add(double v) {
-    if (std::isfinite(v)) {
-      sum += v;
-      ++n;
-    }
-  }
-  double get() const { return n > 0 ? sum / n : NAN; }
-};
-
 struct Aggregate {
   Mean reach, waiting, max_waiting, ugv_len, uav_len, rt;
   int collisions = 0, runs = 0, all_reached = 0, failed = 0;
@@ -110,7 +58,7 @@ struct Aggregate {
 Aggregate aggregate(const std::vector<Run>& runs, const std::string& key) {
   Aggregate a;
   for (const Run& r : runs) {
-    if (r.config.key() != key) continue;
+    if (r.spec.key() != key) continue;
     ++a.runs;
     if (!r.ok) {
       ++a.failed;
@@ -135,13 +83,13 @@ int run_tables(const TablesOptions& o) {
   std::vector<Config> configs;
   const bool t1 = o.tables == "1" || o.tables == "all", t2 = o.tables == "2" || o.tables == "all";
   if (o.quick) {
-    configs = {{"sparse", 1, "none", false}, {"sparse", 1, "none", true}};
+    configs = {spec("sparse", 1, "none", false), spec("sparse", 1, "none", true)};
   } else {
     if (t1) {
       for (const char* scen : {"sparse", "dense"}) {
         for (int n : {1, 3, 5, 7}) {
-          configs.push_back({scen, n, "none", false});
-          configs.push_back({scen, n, "none", true});
+          configs.push_back(spec(scen, n, "none", false));
+          configs.push_back(spec(scen, n, "none", true));
         }
       }
     }
@@ -149,61 +97,22 @@ int run_tables(const TablesOptions& o) {
       for (const char* a :
            {"none", "no-rpe", "no-uncertainty", "no-scheduling", "no-time-windows"}) {
         if (t1 && std::string(a) == "none") continue;  // already in Table I (dense/5)
-        configs.push_back({"dense", 5, a, false});
+        configs.push_back(spec("dense", 5, a, false));
       }
     }
   }
-  const std::string sim = sim_path(o);
-  if (access(sim.c_str(), X_OK) != 0) {
-    std::fprintf(stderr, "colag_bench: cannot run %s\n", sim.c_str());
-    return 2;
-  }
-  const std::string dir = "/tmp/colag_bench." + std::to_string(getpid());
-  if (std::system(("mkdir -p " + dir).c_str()) != 0) return 2;
   std::vector<Run> runs;
   for (const Config& c : configs) {
     for (int s = 1; s <= (o.quick ? 1 : o.seeds); ++s) {
       Run r;
-      r.config = c;
+      r.spec = c;
       r.seed = s;
-      r.json_path = dir + "/run" + std::to_string(runs.size()) + ".json";
       runs.push_back(r);
     }
   }
   std::printf("colag_bench: %zu missions (%d seed%s), %d at a time\n", runs.size(),
               o.quick ? 1 : o.seeds, o.seeds == 1 ? "" : "s", o.jobs);
-  // Each mission gets an equal share of the cores (its results do not depend on it).
-  const int threads =
-      std::clamp(static_cast<int>(std::thread::hardware_concurrency()) / o.jobs, 1, 8);
-  std::size_t next = 0, done = 0;
-  int active = 0;
-  while (done < runs.size()) {
-    while (active < o.jobs && next < runs.size()) {
-      if (!start(runs[next], sim, o.max_time_s, threads)) {
-        std::fprintf(stderr, "colag_bench: cannot start %s\n", sim.c_str());
-        return 2;
-      }
-      ++next;
-      ++active;
-    }
-    int status = 0;
-    const pid_t pid = wait(&status);
-    if (pid < 0) break;
-    --active;
-    ++done;
-    for (Run& r : runs) {
-      if (r.pid != pid) continue;
-      r.ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
-      if (r.ok) {
-        std::ifstream in(r.json_path);
-        r.result = nlohmann::json::parse(in, nullptr, false);
-        r.ok = !r.result.is_discarded();
-      }
-      std::printf("  [%3zu/%zu] %-28s seed %d %s\n", done, runs.size(), r.config.key().c_str(),
-                  r.seed, r.ok ? "" : "FAILED");
-      std::fflush(stdout);
-    }
-  }
+  if (!run_missions(runs, sim_path(o.sim), o.jobs, o.max_time_s)) return 2;
 
   // CSV: one row per mission.
   std::ofstream csv(o.csv);
@@ -211,8 +120,8 @@ int run_tables(const TablesOptions& o) {
          "waiting_time_s,"
          "max_waiting_time_s,ugv_traj_length_m,uav_traj_length_m,sim_time_s,realtime_factor\n";
   for (const Run& r : runs) {
-    csv << r.config.scenario << ',' << r.config.ugvs << ',' << r.config.ablation << ','
-        << r.config.self_perception << ',' << r.seed << ',' << r.ok;
+    csv << r.spec.scenario << ',' << r.spec.ugvs << ',' << r.spec.ablation << ','
+        << r.spec.self_perception << ',' << r.seed << ',' << r.ok;
     if (r.ok) {
       const auto& s = r.result["summary"];
       csv << ',' << s["all_reached"].get<bool>() << ',' << s["collisions"].get<int>() << ','
@@ -243,7 +152,7 @@ int run_tables(const TablesOptions& o) {
                 "S.P. reach [paper]", "S.P. m [paper]", "ratio", "coll", "reached");
     for (const char* scen : {"sparse", "dense"}) {
       for (int n : {1, 3, 5, 7}) {
-        const Config c{scen, n, "none", false}, sp{scen, n, "none", true};
+        const Config c = spec(scen, n, "none", false), sp = spec(scen, n, "none", true);
         const Aggregate a = aggregate(runs, c.key()), b = aggregate(runs, sp.key());
         if (a.runs == 0) continue;
         const PaperRow& p = kTable1.at(std::string(scen) + "/" + std::to_string(n));
@@ -264,7 +173,7 @@ int run_tables(const TablesOptions& o) {
                 "UGV m", "UAV m", "coll", "reached", "paper");
     for (const char* ab :
          {"none", "no-rpe", "no-uncertainty", "no-scheduling", "no-time-windows"}) {
-      const Aggregate a = aggregate(runs, Config{"dense", 5, ab, false}.key());
+      const Aggregate a = aggregate(runs, spec("dense", 5, ab, false).key());
       if (a.runs == 0) continue;
       std::printf("%-16s %8s %7s %7s %7s %8s %5d %4d/%-3d   %s\n", ab, num(a.reach.get()).c_str(),
                   num(a.waiting.get()).c_str(), num(a.max_waiting.get()).c_str(),
@@ -274,7 +183,7 @@ int run_tables(const TablesOptions& o) {
   }
   Mean rt;
   for (const Run& r : runs) {
-    if (r.ok && !r.config.self_perception) rt.add(r.result["realtime_factor"].get<double>());
+    if (r.ok && !r.spec.self_perception) rt.add(r.result["realtime_factor"].get<double>());
   }
   std::printf("\nmean real-time factor of the ColAG runs: %.0fx;  per-mission CSV: %s\n", rt.get(),
               o.csv.c_str());

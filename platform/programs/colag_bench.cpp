@@ -2,12 +2,14 @@
 //   colag_bench scheduler --instance FILE   solve a TSPTW instance (standard matrix format)
 //                                           with the UAV's scheduler and print the tour
 //   colag_bench tables [--seeds K] [--jobs J] [--table 1|2|all] [--csv FILE] [--quick]
+//   colag_bench safety [--seeds K] [--jobs J] [--csv FILE] [--quick]
 //                                           the paper's Table I and II, measured
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
 #include <memory>
 
+#include "bench_safety.hpp"
 #include "bench_tables.hpp"
 #include "tsptw_instance.hpp"
 
@@ -66,8 +68,19 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   tables->add_option("--sim", topt.sim, "colag_sim to run (default: next to colag_bench)");
   tables->add_flag("--quick", topt.quick, "one small configuration, one seed (a smoke run)");
+  auto* safety = app.add_subcommand(
+      "safety", "Monte-Carlo under faults: maps x UGV counts x fault settings x seeds");
+  programs::SafetyOptions sopt;
+  safety->add_option("--seeds", sopt.seeds, "seeds per configuration")->check(CLI::Range(1, 100));
+  safety->add_option("--jobs", sopt.jobs, "missions at once")->check(CLI::Range(1, 64));
+  safety->add_option("--csv", sopt.csv, "per-mission results");
+  safety->add_option("--max-time", sopt.max_time_s, "simulated seconds per mission")
+      ->check(CLI::PositiveNumber);
+  safety->add_option("--sim", sopt.sim, "colag_sim to run (default: next to colag_bench)");
+  safety->add_flag("--quick", sopt.quick, "dense, 3 UGVs, two fault settings, one seed");
   CLI11_PARSE(app, argc, argv);
   if (*sched) return run_scheduler(instance, exact_max);
   if (*tables) return programs::run_tables(topt);
+  if (*safety) return programs::run_safety(sopt);
   return 2;
 }

@@ -1,0 +1,20 @@
+#pragma once
+// colag_bench safety: Monte-Carlo over maps x UGV counts x fault settings x seeds (every mission
+// a colag_sim process with fault injection), reporting per fault setting the collisions, the
+// minimum clearance, the reach rate and the waiting time; every mission also goes to CSV.
+#include <string>
+
+namespace colag::programs {
+
+struct SafetyOptions {
+  int seeds = 2;
+  int jobs = 2;
+  std::string csv = "colag_safety.csv";
+  double max_time_s = 400.0;
+  bool quick = false;  // dense, 3 UGVs, two fault settings, one seed: a smoke run
+  std::string sim;
+};
+
+int run_safety(const SafetyOptions& options);
+
+}  // namespace colag::programs

@@ -1,0 +1,107 @@
+#include "mission_pool.hpp"
+
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <thread>
+
+extern char** environ;
+
+namespace colag::programs {
+
+std::string MissionSpec::key() const {
+  return scenario + "/" + std::to_string(ugvs) + "/" + ablation + (self_perception ? "/sp" : "") +
+         (faults == "none" ? "" : "/" + faults);
+}
+
+void Mean::add(double v) {
+  if (std::isfinite(v)) {
+    sum += v;
+    ++n;
+  }
+}
+double Mean::get() const {
+  return n > 0 ? sum / n : NAN;
+}
+
+std::string sim_path(const std::string& explicit_path) {
+  if (!explicit_path.empty()) return explicit_path;
+  char self[4096];
+  const ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
+  if (n <= 0) return "colag_sim";
+  std::string dir(self, static_cast<std::size_t>(n));
+  return dir.substr(0, dir.rfind('/')) + "/colag_sim";
+}
+
+namespace {
+bool start(MissionRun& r, const std::string& sim, double max_time, int threads) {
+  std::vector<std::string> args = {sim,          "--quiet",
+                                   "--threads",  std::to_string(threads),
+                                   "--scenario", r.spec.scenario,
+                                   "--ugvs",     std::to_string(r.spec.ugvs),
+                                   "--seed",     std::to_string(r.seed),
+                                   "--ablation", r.spec.ablation,
+                                   "--max-time", std::to_string(max_time),
+                                   "--json",     r.json_path};
+  if (r.spec.self_perception) args.push_back("--self-perception");
+  args.insert(args.end(), r.spec.fault_args.begin(), r.spec.fault_args.end());
+  std::vector<char*> argv;
+  for (auto& a : args)
+    argv.push_back(a.data());
+  argv.push_back(nullptr);
+  return posix_spawn(&r.pid, sim.c_str(), nullptr, nullptr, argv.data(), environ) == 0;
+}
+}  // namespace
+
+bool run_missions(std::vector<MissionRun>& runs, const std::string& sim, int jobs,
+                  double max_time_s) {
+  if (access(sim.c_str(), X_OK) != 0) {
+    std::fprintf(stderr, "colag_bench: cannot run %s\n", sim.c_str());
+    return false;
+  }
+  const std::string dir = "/tmp/colag_bench." + std::to_string(getpid());
+  if (std::system(("mkdir -p " + dir).c_str()) != 0) return false;
+  for (std::size_t i = 0; i < runs.size(); ++i)
+    runs[i].json_path = dir + "/run" + std::to_string(i) + ".json";
+  // Each mission gets an equal share of the cores (its results do not depend on it).
+  const int threads =
+      std::clamp(static_cast<int>(std::thread::hardware_concurrency()) / jobs, 1, 8);
+  std::size_t next = 0, done = 0;
+  int active = 0;
+  while (done < runs.size()) {
+    while (active < jobs && next < runs.size()) {
+      if (!start(runs[next], sim, max_time_s, threads)) {
+        std::fprintf(stderr, "colag_bench: cannot start %s\n", sim.c_str());
+        return false;
+      }
+      ++next;
+      ++active;
+    }
+    int status = 0;
+    const pid_t pid = wait(&status);
+    if (pid < 0) break;
+    --active;
+    ++done;
+    for (MissionRun& r : runs) {
+      if (r.pid != pid) continue;
+      r.ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
+      if (r.ok) {
+        std::ifstream in(r.json_path);
+        r.result = nlohmann::json::parse(in, nullptr, false);
+        r.ok = !r.result.is_discarded();
+      }
+      std::printf("  [%3zu/%zu] %-34s seed %d %s\n", done, runs.size(), r.spec.key().c_str(),
+                  r.seed, r.ok ? "" : "FAILED");
+      std::fflush(stdout);
+    }
+  }
+  return true;
+}
+
+}  // namespace colag::programs

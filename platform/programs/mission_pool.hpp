@@ -1,0 +1,45 @@
+#pragma once
+// Runs many missions as separate colag_sim processes, a few at a time, and reads back each one's
+// JSON: what colag_bench's table and safety modes share.
+#include <sys/types.h>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace colag::programs {
+
+struct MissionSpec {
+  std::string scenario = "dense";
+  int ugvs = 1;
+  std::string ablation = "none";
+  bool self_perception = false;
+  std::string faults = "none";          // a label for the fault setting
+  std::vector<std::string> fault_args;  // colag_sim's fault options for it
+  std::string key() const;
+};
+
+struct MissionRun {
+  MissionSpec spec;
+  int seed = 0;
+  std::string json_path;
+  pid_t pid = 0;
+  bool ok = false;
+  nlohmann::json result;
+};
+
+// colag_sim next to the running program, unless `explicit_path` is given.
+std::string sim_path(const std::string& explicit_path);
+
+// Runs every mission (`jobs` at a time, each with an equal share of the cores), printing one
+// progress line per finished mission. False if colag_sim could not be started at all.
+bool run_missions(std::vector<MissionRun>& runs, const std::string& sim, int jobs,
+                  double max_time_s);
+
+struct Mean {
+  double sum = 0;
+  int n = 0;
+  void add(double v);
+  double get() const;
+};
+
+}  // namespace colag::programs
