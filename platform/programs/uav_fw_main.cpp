@@ -13,8 +13,6 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <string>
 
 #include "colag/board/board_runtime.hpp"
@@ -48,28 +46,11 @@ class CameraReport final : public platform::Task {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string config_path;
-  bool check_only = false;
-  double camera_test_s = -1.0;
-  for (int i = 1; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--config") == 0 && i + 1 < argc)
-      config_path = argv[++i];
-    else if (std::strcmp(argv[i], "--check-config") == 0)
-      check_only = true;
-    else if (std::strcmp(argv[i], "--camera-test") == 0 && i + 1 < argc)
-      camera_test_s = std::atof(argv[++i]);
-    else {
-      std::fprintf(stderr, "usage: uav_fw --config FILE.yaml [--check-config] [--camera-test S]\n");
-      return 2;
-    }
-  }
-  if (config_path.empty()) {
-    std::fprintf(stderr, "uav_fw: --config FILE.yaml is required\n");
-    return 2;
-  }
+  board::ProgramArgs args;
+  if (!board::parse_program_args(argc, argv, "uav_fw", "--camera-test", args)) return 2;
   board::UavBoardConfig cfg;
   std::string error;
-  if (!board::load_uav_config(config_path, cfg, error)) {
+  if (!board::load_uav_config(args.config_path, cfg, error)) {
     std::fprintf(stderr, "uav_fw: %s\n", error.c_str());
     return 2;
   }
@@ -78,8 +59,8 @@ int main(int argc, char** argv) {
               cfg.id, cfg.camera.uri.c_str(), cam.width, cam.height, cam.fx,
               cam.distorted() ? "distorted lens" : "pinhole", cfg.rpe.tags.size(),
               cfg.rpe.tag_size_m, cfg.common.dds_domain);
-  if (check_only) return 0;
-  if (camera_test_s < 0.0) {
+  if (args.check_only) return 0;
+  if (args.seconds < 0.0) {
     std::fprintf(stderr,
                  "uav_fw: no flight-controller, odometry or LiDAR driver for this board yet "
                  "(only simulated ones exist); run --camera-test to bring up the camera\n");
@@ -97,8 +78,7 @@ int main(int argc, char** argv) {
   board::print_realtime_setup("uav_fw", exec.apply(cfg.common.realtime));
   if (!exec.init()) return 1;
   board::stop_on_signals(exec);
-  exec.run_until(exec.clock().now() + std::chrono::duration_cast<Duration>(
-                                          std::chrono::duration<double>(camera_test_s)));
+  exec.run_until(exec.clock().now() + seconds(args.seconds));
   camera.stop();
   const linux_hal::CameraStats s = camera.stats();
   const linux_hal::TagPoseCounters c = camera.detector_counters();

@@ -6,7 +6,6 @@
 // Exit codes: 0 clean stop (SIGINT/SIGTERM or --duration), 1 a device or DDS failed to start,
 // 2 a usage or configuration error.
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <optional>
 #include <string>
@@ -20,28 +19,11 @@
 using namespace colag;
 
 int main(int argc, char** argv) {
-  std::string config_path;
-  bool check_only = false;
-  double duration_s = 0.0;
-  for (int i = 1; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--config") == 0 && i + 1 < argc)
-      config_path = argv[++i];
-    else if (std::strcmp(argv[i], "--check-config") == 0)
-      check_only = true;
-    else if (std::strcmp(argv[i], "--duration") == 0 && i + 1 < argc)
-      duration_s = std::atof(argv[++i]);
-    else {
-      std::fprintf(stderr, "usage: ugv_fw --config FILE.yaml [--check-config] [--duration S]\n");
-      return 2;
-    }
-  }
-  if (config_path.empty()) {
-    std::fprintf(stderr, "ugv_fw: --config FILE.yaml is required\n");
-    return 2;
-  }
+  board::ProgramArgs args;
+  if (!board::parse_program_args(argc, argv, "ugv_fw", "--duration", args)) return 2;
   board::UgvBoardConfig cfg;
   std::string error;
-  if (!board::load_ugv_config(config_path, cfg, error)) {
+  if (!board::load_ugv_config(args.config_path, cfg, error)) {
     std::fprintf(stderr, "ugv_fw: %s\n", error.c_str());
     return 2;
   }
@@ -49,7 +31,7 @@ int main(int argc, char** argv) {
               cfg.nav.id, cfg.nav.goal.x(), cfg.nav.goal.y(), cfg.can_interface.c_str(),
               cfg.protocol.counts_id, cfg.protocol.speeds_id, cfg.protocol.command_id,
               cfg.common.dds_domain);
-  if (check_only) return 0;
+  if (args.check_only) return 0;
 
   platform::RealtimeExecutor exec;
   linux_hal::SocketCanConfig can_cfg;
@@ -97,10 +79,8 @@ int main(int argc, char** argv) {
     return 1;
   }
   board::stop_on_signals(exec);
-  const TimePoint end = duration_s > 0.0
-                            ? exec.clock().now() + std::chrono::duration_cast<Duration>(
-                                                       std::chrono::duration<double>(duration_s))
-                            : TimePoint::max();
+  const TimePoint end =
+      args.seconds > 0.0 ? exec.clock().now() + seconds(args.seconds) : TimePoint::max();
   exec.run_until(end);
   // Motors first: zero speed (sent twice: a single lost frame must not leave them running;
   // the controller's own 200 ms command timeout is the last line).

@@ -42,9 +42,7 @@ class CanStackTask final : public platform::Task {
   void step(TimePoint now) override {
     hal::WheelOdometrySample s;
     while (odometry_.poll(s)) {
-      const double dt = last_.time_since_epoch().count() == 0
-                            ? 0.0
-                            : std::chrono::duration<double>(s.stamp - last_).count();
+      const double dt = last_.time_since_epoch().count() == 0 ? 0.0 : to_seconds(s.stamp - last_);
       last_ = s.stamp;
       yaw_ += s.omega_radps * dt;
       x_ += s.v_mps * dt * std::cos(yaw_);
@@ -62,7 +60,7 @@ class CanStackTask final : public platform::Task {
       (void)drive_.stop(now);  // the watchdog: zero speed until odometry is back
       return;
     }
-    hal::DriveCommand c = profile(std::chrono::duration<double>(now - start_).count());
+    hal::DriveCommand c = profile(to_seconds(now - start_));
     c.stamp = now;
     if (!drive_.command(c)) ++send_failures_;
   }
@@ -105,7 +103,7 @@ Reference reference() {
   return {body.travelled_m(), body.pose().yaw_rad};
 }
 
-int run(const std::string& interface, double seconds) {
+int run(const std::string& interface, double run_s) {
   platform::RealtimeExecutor exec;
   linux_hal::SocketCanConfig cfg;
   cfg.interface = interface;
@@ -120,13 +118,12 @@ int run(const std::string& interface, double seconds) {
   (void)exec.add({&task, std::chrono::milliseconds(20), std::chrono::milliseconds(10), {}});
   const platform::RealtimeSetup setup = exec.apply({.fifo_priority = 50, .lock_memory = true});
   if (!exec.init()) return 1;
-  exec.run_until(exec.clock().now() +
-                 std::chrono::duration_cast<Duration>(std::chrono::duration<double>(seconds)));
+  exec.run_until(exec.clock().now() + seconds(run_s));
   task.shutdown(exec.clock().now());
 
   const Reference ref = reference();
   const auto& c = task.odometry_.counters();
-  const double trip_ms = std::chrono::duration<double, std::milli>(task.trip_delay_).count();
+  const double trip_ms = to_seconds(task.trip_delay_) * 1e3;
   std::printf("hil_ugv: SCHED_FIFO %s, mlockall %s\n", setup.fifo ? "yes" : "no",
               setup.memory_lock ? "yes" : "no");
   std::printf("hil_ugv: %llu odometry samples, distance %.3f m, pose x %.3f y %.3f yaw %.3f\n",
@@ -212,12 +209,12 @@ int main(int argc, char** argv) {
     return check_log(argv[2], std::atoi(argv[4]));
   if (mode == "run") {
     std::string interface = "vcan0";
-    double seconds = 6.0;
+    double run_s = 6.0;
     for (int i = 2; i + 1 < argc; i += 2) {
       if (std::strcmp(argv[i], "--interface") == 0) interface = argv[i + 1];
-      if (std::strcmp(argv[i], "--seconds") == 0) seconds = std::atof(argv[i + 1]);
+      if (std::strcmp(argv[i], "--seconds") == 0) run_s = std::atof(argv[i + 1]);
     }
-    return run(interface, seconds);
+    return run(interface, run_s);
   }
   std::fprintf(
       stderr,

@@ -15,12 +15,12 @@
 int main(int argc, char** argv) {
   using namespace colag;
   std::string interface = "vcan0";
-  double seconds = 5.0;
+  double run_s = 5.0;
   for (int i = 1; i + 1 < argc; i += 2) {
     if (std::strcmp(argv[i], "--interface") == 0)
       interface = argv[i + 1];
     else if (std::strcmp(argv[i], "--seconds") == 0)
-      seconds = std::atof(argv[i + 1]);
+      run_s = std::atof(argv[i + 1]);
     else {
       std::fprintf(stderr, "usage: %s [--interface vcan0] [--seconds 5]\n", argv[0]);
       return 2;
@@ -41,13 +41,13 @@ int main(int argc, char** argv) {
   const Duration period = std::chrono::milliseconds(20);
   const TimePoint start = clock.now();
   TimePoint next = start;
-  while (clock.now() - start < std::chrono::duration<double>(seconds)) {
+  const TimePoint end = start + seconds(run_s);
+  while (clock.now() < end) {
     next += period;
     std::this_thread::sleep_for(next - clock.now());
     body.step(clock.now(), 0.02, bus);
   }
   std::printf("motor emulator: stopped after %.1f s; true pose x %.3f y %.3f yaw %.3f, %.3f m\n",
-              seconds, body.pose().p.x(), body.pose().p.y(), body.pose().yaw_rad,
-              body.travelled_m());
+              run_s, body.pose().p.x(), body.pose().p.y(), body.pose().yaw_rad, body.travelled_m());
   return 0;
 }

@@ -4,10 +4,10 @@
 
 namespace colag::test {
 
-bool CanBusConformance::receive_within(hal::CanBus& bus, hal::CanFrame& out) {
-  for (int i = 0; i < 1000; ++i) {
+bool receive_within(CanBusPair& pair, hal::CanBus& bus, hal::CanFrame& out, int ms) {
+  for (int i = 0; i < ms; ++i) {
     if (bus.receive(out)) return true;
-    pair_->wait(std::chrono::milliseconds(1));
+    pair.wait(std::chrono::milliseconds(1));
   }
   return false;
 }

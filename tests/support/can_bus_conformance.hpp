@@ -29,6 +29,10 @@ struct CanBusImplementation {
   std::function<std::unique_ptr<CanBusPair>(std::string& why)> make;
 };
 
+// Receives on `bus`, polling every millisecond for up to `ms` of the pair's time (frames on a real
+// bus arrive asynchronously).
+bool receive_within(CanBusPair& pair, hal::CanBus& bus, hal::CanFrame& out, int ms = 1000);
+
 inline void PrintTo(const CanBusImplementation& i, std::ostream* os) {
   *os << i.name;
 }
@@ -40,8 +44,9 @@ class CanBusConformance : public ::testing::TestWithParam<CanBusImplementation> 
     pair_ = GetParam().make(why);
     if (!pair_) GTEST_SKIP() << GetParam().name << " not available here: " << why;
   }
-  // Receives on `bus`, waiting up to 1 s (frames on a real bus arrive asynchronously).
-  bool receive_within(hal::CanBus& bus, hal::CanFrame& out);
+  bool receive_within(hal::CanBus& bus, hal::CanFrame& out) {
+    return test::receive_within(*pair_, bus, out);
+  }
   std::unique_ptr<CanBusPair> pair_;
 };
 

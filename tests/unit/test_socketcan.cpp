@@ -72,11 +72,7 @@ class SocketCan : public ::testing::Test {
     if (!pair_) GTEST_SKIP() << "SocketCAN not available here: " << why_;
   }
   bool receive_within(hal::CanBus& bus, hal::CanFrame& out, int ms = 200) {
-    for (int i = 0; i < ms; ++i) {
-      if (bus.receive(out)) return true;
-      std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    }
-    return false;
+    return test::receive_within(*pair_, bus, out, ms);
   }
   TimePoint soon() const { return pair_->clock_.now() + std::chrono::milliseconds(50); }
   std::string why_;

@@ -13,6 +13,15 @@ std::int8_t to_units(double p) {
 }
 // How far a half's part of a ray stops short of the sensor's row (and the rest starts inside it).
 constexpr double kEdge_m = 1e-7;
+// The y of the boundary between the sensor's voxel row and the half on `side` (-1 south, +1 north).
+double row_edge_y(const GridGeometry3d& g, int sensor_row, int side) {
+  return g.origin_y() + (sensor_row + (side < 0 ? 0 : 1)) * g.resolution();
+}
+// The point of the segment from -> to at height y (clamped to the segment).
+Vec3 point_at_y(const Vec3& from, const Vec3& to, double y) {
+  const Vec3 d = to - from;
+  return from + std::clamp((y - from.y()) / d.y(), 0.0, 1.0) * d;
+}
 }  // namespace
 
 Mapper::Mapper(const MapperConfig& config, ForkJoin* fork_join)
@@ -166,15 +175,12 @@ void Mapper::trace_half(const Vec3& origin, int sensor_row, int side, Part& part
   const int row_lo = side < 0 ? 0 : sensor_row + 1;
   const int row_hi = side < 0 ? sensor_row - 1 : g.cells_y() - 1;
   merge_and_hit(row_lo, row_hi, part);
-  const double edge_y =
-      g.origin_y() + (sensor_row + (side < 0 ? 0 : 1)) * g.resolution() + side * kEdge_m;
+  const double edge_y = row_edge_y(g, sensor_row, side) + side * kEdge_m;  // just outside the row
   for (std::uint32_t k = 0; k < rays_.size(); ++k) {
     const Ray& ray = rays_[k];
     if (ray.row < row_lo || ray.row > row_hi || ray.merged) continue;
-    const Vec3 d = origin - ray.end;
-    const double s = std::clamp((edge_y - ray.end.y()) / d.y(), 0.0, 1.0);
     Runs runs;
-    if (trace(ray.end, ray.end + s * d, true, ray.hit, runs, part)) {
+    if (trace(ray.end, point_at_y(ray.end, origin, edge_y), true, ray.hit, runs, part)) {
       (void)part.resume.push_back({k, static_cast<std::uint8_t>(std::min(runs.unchanged, 255)),
                                    static_cast<std::uint8_t>(std::min(runs.crossed, 255))});
     }
@@ -217,14 +223,12 @@ void Mapper::insert_scan(const Pose3& sensor, const hal::LidarScanView& scan) {
       (void)trace(ray.end, sensor.p, true, ray.hit, runs, serial);
   }
   for (int k = 0; k < 2; ++k) {
-    const double edge_y =
-        g.origin_y() + (sensor_row + k) * g.resolution() + (k == 0 ? 1 : -1) * kEdge_m;
+    const int side = k == 0 ? -1 : 1;
+    const double edge_y = row_edge_y(g, sensor_row, side) - side * kEdge_m;  // just inside the row
     for (const Part::Resume& r : parts_[static_cast<std::size_t>(k)].resume) {
       const Ray& ray = rays_[r.ray];
-      const Vec3 d = sensor.p - ray.end;
-      const double s = std::clamp((edge_y - ray.end.y()) / d.y(), 0.0, 1.0);
       Runs runs{r.unchanged, r.crossed};
-      (void)trace(ray.end + s * d, sensor.p, false, false, runs, serial);
+      (void)trace(point_at_y(ray.end, sensor.p, edge_y), sensor.p, false, false, runs, serial);
       ++counters_.rays_resumed;
     }
   }

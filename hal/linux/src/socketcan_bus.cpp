@@ -59,7 +59,7 @@ Status SocketCanBus::open() {
     return {Errc::kUnavailable, "socketcan: no such CAN interface"};
   }
   // Receive filters: only our ids reach the socket queue.
-  can_filter filters[8];
+  can_filter filters[limits::kCanFilters];
   for (std::size_t i = 0; i < config_.filters.size(); ++i) {
     const CanFilter& f = config_.filters[i];
     filters[i].can_id = f.extended ? (f.id | CAN_EFF_FLAG) : f.id;
@@ -107,8 +107,7 @@ bool SocketCanBus::ensure_open() {
 }
 
 Status SocketCanBus::send(const hal::CanFrame& frame, TimePoint deadline) {
-  const std::uint32_t max_id = frame.extended ? CAN_EFF_MASK : CAN_SFF_MASK;
-  if (frame.dlc > 8 || frame.id > max_id) {
+  if (!hal::is_valid(frame)) {
     ++stats_.tx_failures;
     return {Errc::kInvalidArgument, "socketcan: bad frame (dlc > 8 or id too large)"};
   }

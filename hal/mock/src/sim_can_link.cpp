@@ -4,7 +4,7 @@ namespace colag::mock {
 
 Status SimCanLink::End::send(const hal::CanFrame& frame, TimePoint) {
   // The same refusals as SocketCAN (the shared conformance suite checks both).
-  if (frame.dlc > 8 || frame.id > (frame.extended ? 0x1FFFFFFFu : 0x7FFu)) {
+  if (!hal::is_valid(frame)) {
     ++stats_.tx_failures;
     return {Errc::kInvalidArgument, "CAN frame: dlc > 8 or id too large"};
   }

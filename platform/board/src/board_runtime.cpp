@@ -2,6 +2,8 @@
 
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 
 namespace colag::board {
 
@@ -11,6 +13,28 @@ extern "C" void on_signal(int) {
   if (g_exec != nullptr) g_exec->request_stop();
 }
 }  // namespace
+
+bool parse_program_args(int argc, char** argv, const char* program, const char* seconds_flag,
+                        ProgramArgs& out) {
+  for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--config") == 0 && i + 1 < argc) {
+      out.config_path = argv[++i];
+    } else if (std::strcmp(argv[i], "--check-config") == 0) {
+      out.check_only = true;
+    } else if (std::strcmp(argv[i], seconds_flag) == 0 && i + 1 < argc) {
+      out.seconds = std::atof(argv[++i]);
+    } else {
+      std::fprintf(stderr, "usage: %s --config FILE.yaml [--check-config] [%s S]\n", program,
+                   seconds_flag);
+      return false;
+    }
+  }
+  if (out.config_path.empty()) {
+    std::fprintf(stderr, "%s: --config FILE.yaml is required\n", program);
+    return false;
+  }
+  return true;
+}
 
 void stop_on_signals(platform::RealtimeExecutor& exec) {
   g_exec = &exec;
@@ -34,8 +58,7 @@ void print_task_stats(const char* program, const platform::Schedule& schedule) {
     std::printf("%s: %-14s %10llu %9llu %8llu %12.3f\n", program, s.name,
                 static_cast<unsigned long long>(s.steps),
                 static_cast<unsigned long long>(s.overruns),
-                static_cast<unsigned long long>(s.skipped),
-                std::chrono::duration<double, std::milli>(s.longest_step).count());
+                static_cast<unsigned long long>(s.skipped), to_seconds(s.longest_step) * 1e3);
   }
 }
 

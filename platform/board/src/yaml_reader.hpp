@@ -72,13 +72,13 @@ class Reader {
     double hz = 0.0;
     bool present = node && node[key];
     get(node, path, key, hz, 0.1, 1000.0);
-    if (present && ok()) out = std::chrono::nanoseconds(std::llround(1e9 / hz));
+    if (present && ok()) out = period_of_hz(hz);
   }
   void millis(const YAML::Node& node, const std::string& path, const char* key, Duration& out,
               double lo, double hi) {
-    double ms = std::chrono::duration<double, std::milli>(out).count();
+    double ms = to_seconds(out) * 1e3;
     get(node, path, key, ms, lo, hi);
-    out = std::chrono::nanoseconds(std::llround(ms * 1e6));
+    out = seconds(ms / 1e3);
   }
   // [x, y] or [x, y, z] (n values).
   bool vector(const YAML::Node& node, const std::string& path, const char* key, double* out,

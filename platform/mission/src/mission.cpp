@@ -79,8 +79,8 @@ void apply_faults(const FaultConfig& fc, double t, platform::LoopbackTransport& 
   if (!fc.any()) return;
   platform::LinkFaults base;
   base.drop_probability = fc.loss;
-  base.latency = std::chrono::microseconds(std::llround(fc.latency_ms * 1000.0));
-  base.jitter = std::chrono::microseconds(std::llround(fc.jitter_ms * 1000.0));
+  base.latency = seconds(fc.latency_ms / 1e3);
+  base.jitter = seconds(fc.jitter_ms / 1e3);
   platform::LinkFaults lost = base;
   lost.drop_probability = 1.0;
   const bool uav_out = fc.uav_blackout.contains(t);

@@ -42,7 +42,9 @@ inline constexpr std::size_t kMaxLidarPoints = kMaxLidarBeams * kMaxLidarColumns
 inline constexpr std::size_t kMaxRpeDetectionsPerFrame = kMaxUgvs;
 inline constexpr std::size_t kMaxRpeTags = 2 * kMaxUgvs;  // tags the camera knows (2 per UGV)
 inline constexpr std::size_t kUavOdometryHistory = 64;    // UGV side, for RPE time matching
-inline constexpr std::size_t kCanRxQueue = 64;
+inline constexpr std::size_t kCanRxQueue = 64;       // frames queued per simulated CAN endpoint
+inline constexpr std::size_t kCanFilters = 8;        // kernel receive filters per SocketCAN bus
+inline constexpr std::size_t kOdometryBacklog = 32;  // wheel samples awaiting the task's poll
 
 // --- Runtime -----------------------------------------------------------------------------------
 // A board runs a handful of tasks; the host simulator puts a whole fleet in one table

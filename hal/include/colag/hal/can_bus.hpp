@@ -24,6 +24,12 @@ struct CanBusStats {
   bool error_passive = false;
 };
 
+// A classic-CAN frame any bus can carry: at most 8 data bytes, an 11-bit id (29-bit when
+// extended). Every CanBus refuses other frames with kInvalidArgument.
+constexpr bool is_valid(const CanFrame& f) {
+  return f.dlc <= 8 && f.id <= (f.extended ? 0x1FFFFFFFu : 0x7FFu);
+}
+
 // A raw classic-CAN bus. Non-blocking: receive returns false when nothing is queued.
 class CanBus {
  public:

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <string>
 
+#include "colag/common/limits.hpp"
 #include "colag/common/static_vector.hpp"
 #include "colag/hal/can_bus.hpp"
 #include "colag/hal/clock.hpp"
@@ -27,7 +28,7 @@ struct CanFilter {
 
 struct SocketCanConfig {
   std::string interface = "can0";
-  StaticVector<CanFilter, 8> filters;  // empty: receive every data frame
+  StaticVector<CanFilter, limits::kCanFilters> filters;  // empty: receive every data frame
   Duration reconnect_period = std::chrono::milliseconds(500);
 };
 

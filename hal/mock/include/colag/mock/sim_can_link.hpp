@@ -2,6 +2,7 @@
 // A CAN bus in memory between the UGV board (the real CanWheelOdometry / CanDrive drivers) and
 // the simulated motor controller: two CanBus endpoints; a frame sent on one is received on the
 // other, stamped with the simulated time of sending.
+#include "colag/common/limits.hpp"
 #include "colag/common/ring_buffer.hpp"
 #include "colag/hal/can_bus.hpp"
 #include "colag/hal/clock.hpp"
@@ -29,7 +30,7 @@ class SimCanLink {
     friend class SimCanLink;
     SimCanLink& link_;
     int side_;
-    RingBuffer<hal::CanFrame, 64> inbox_;
+    RingBuffer<hal::CanFrame, limits::kCanRxQueue> inbox_;
     hal::CanBusStats stats_;
   };
   End board_, motor_;

@@ -4,6 +4,7 @@
 // SPEED_COMMAND frames. Every malformed or implausible frame is rejected and counted.
 #include <cstdint>
 
+#include "colag/common/limits.hpp"
 #include "colag/common/ring_buffer.hpp"
 #include "colag/hal/can/wheel_protocol.hpp"
 #include "colag/hal/clock.hpp"
@@ -53,7 +54,7 @@ class CanWheelOdometry final : public WheelOdometry {
   TimePoint last_stamp_{};
   bool have_alive_ = false;
   WheelSpeeds speeds_{};
-  RingBuffer<WheelOdometrySample, 32> pending_;
+  RingBuffer<WheelOdometrySample, limits::kOdometryBacklog> pending_;
   CanOdometryCounters counters_;
 };
 
