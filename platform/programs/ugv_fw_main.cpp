@@ -52,6 +52,7 @@ int main(int argc, char** argv) {
   platform::dds::DdsConfig dds_cfg;
   dds_cfg.domain_id = cfg.common.dds_domain;
   dds_cfg.partition = cfg.common.dds_partition.c_str();
+  dds_cfg.security = cfg.common.dds_security;
   dds_cfg.publishes = {};  // a UGV announces only what it sends
   dds_cfg.publishes[static_cast<std::size_t>(msg::Topic::kUgvStatus)] = true;
   dds_cfg.publishes[static_cast<std::size_t>(msg::Topic::kCollisionInfo)] = true;

@@ -66,6 +66,34 @@ odometry: {timeout_ms: 80, sigma_v: 0.05, sigma_omega: 0.04}
   EXPECT_DOUBLE_EQ(c.nav.ekf.noise.sigma_v_mps, 0.05);
 }
 
+TEST_F(BoardConfig, DdsSecurityFilesAreRelativeToTheConfigAndAllRequired) {
+  UgvBoardConfig c;
+  std::string error;
+  ASSERT_TRUE(load_ugv_config(write("secure.yaml", R"(
+dds:
+  security:
+    identity_ca: pki/ca.pem
+    certificate: pki/ugv1/identity.pem
+    private_key: pki/ugv1/key.pem
+    permissions_ca: /etc/colag/pki/ca.pem
+    governance: pki/governance.p7s
+    permissions: pki/ugv1/permissions.p7s
+)"),
+                              c, error))
+      << error;
+  EXPECT_TRUE(c.common.dds_security.enabled());
+  EXPECT_EQ(c.common.dds_security.identity_ca, (dir_ / "pki/ca.pem").string());
+  EXPECT_EQ(c.common.dds_security.permissions_ca, "/etc/colag/pki/ca.pem");
+  EXPECT_EQ(c.common.dds_security.permissions, (dir_ / "pki/ugv1/permissions.p7s").string());
+  EXPECT_NE(ugv_error("dds: {security: {identity_ca: ca.pem}}")
+                .find("dds.security.certificate: required when security is on"),
+            std::string::npos);
+  EXPECT_NE(ugv_error("dds: {security: {cert: a.pem}}").find("dds.security.cert: unknown key"),
+            std::string::npos);
+  EXPECT_TRUE(load_ugv_config(write("plain.yaml", "dds: {domain: 3}"), c, error)) << error;
+  EXPECT_FALSE(c.common.dds_security.enabled());
+}
+
 TEST_F(BoardConfig, EmptyFileMeansDefaults) {
   UgvBoardConfig c;
   std::string error;
@@ -93,6 +121,9 @@ TEST_F(BoardConfig, ErrorsNameTheKeyAndTheProblem) {
             std::string::npos);
   EXPECT_NE(ugv_error("robot: {id: 1\n  goal: ]").find("line "), std::string::npos);
   EXPECT_NE(ugv_error("- 1\n- 2").find("(top level): expected a mapping"), std::string::npos);
+  // Found by fuzz_yaml_config: these threw out of the reader instead of naming the problem.
+  EXPECT_NE(ugv_error("rates:\n  control").find("rates: expected a mapping"), std::string::npos);
+  EXPECT_NE(ugv_error("? [a, b]\n: 1").find("(top level): a key is not a name"), std::string::npos);
   UgvBoardConfig c;
   std::string error;
   EXPECT_FALSE(load_ugv_config((dir_ / "none.yaml").string(), c, error));

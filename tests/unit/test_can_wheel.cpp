@@ -134,6 +134,20 @@ TEST(CanWheelOdometry, CountsLostDuplicateCorruptAndImplausibleFrames) {
   EXPECT_EQ(c.implausible, 1u);
 }
 
+// Found by fuzz_can_frames: two frames stamped 1 us apart made 100 ticks a 150 m/s sample.
+TEST(CanWheelOdometry, FramesStampedTooCloseAreImplausibleNotFast) {
+  scripted::ScriptedCanBus bus;
+  CanWheelOdometry odo(bus, kProto, kGeo);
+  ASSERT_TRUE(bus.inject(counts(0, 0, 1, TimePoint{20ms})));
+  ASSERT_TRUE(bus.inject(counts(100, 100, 2, TimePoint{20ms + 1us})));
+  ASSERT_TRUE(bus.inject(counts(200, 200, 3, TimePoint{40ms})));  // 100 ticks in ~20 ms: fine
+  WheelOdometrySample s;
+  ASSERT_TRUE(odo.poll(s));
+  EXPECT_NEAR(s.v_mps, 100 * m_per_tick() / (0.02 - 1e-6), 1e-9);
+  EXPECT_FALSE(odo.poll(s));
+  EXPECT_EQ(odo.counters().implausible, 1u);
+}
+
 TEST(CanDrive, TwistBecomesWheelSpeedsWithinTheLimit) {
   scripted::ScriptedCanBus bus;
   CanDrive drive(bus, kProto, kGeo);

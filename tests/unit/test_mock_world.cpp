@@ -56,6 +56,23 @@ TEST(PcdLoader, MalformedFilesGiveClearErrors) {
   EXPECT_FALSE(parse_pcd("FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nPOINTS 1\nDATA binary_compressed\n",
                          pts, error));
   EXPECT_NE(error.find("not supported"), std::string::npos) << error;
+  // Found by fuzz_pcd: far points overflowed the column arithmetic; absurd sizes the record size.
+  EXPECT_FALSE(parse_pcd("FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nPOINTS 1\nDATA ascii\n1e300 0 1\n",
+                         pts, error));
+  EXPECT_NE(error.find("1000 km"), std::string::npos) << error;
+  EXPECT_FALSE(
+      parse_pcd("FIELDS x y z\nSIZE 4 4 3\nTYPE F F F\nPOINTS 1\nDATA ascii\n1 0 1\n", pts, error));
+  EXPECT_NE(error.find("SIZE must be"), std::string::npos) << error;
+  EXPECT_FALSE(
+      parse_pcd("FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 99999999\nPOINTS 1\n"
+                "DATA binary\nabc",
+                pts, error));
+  EXPECT_NE(error.find("COUNT must be"), std::string::npos) << error;
+  EXPECT_FALSE(
+      parse_pcd("FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 9999999999\nHEIGHT "
+                "9999999999\nDATA ascii\n",
+                pts, error));
+  EXPECT_NE(error.find("absurd"), std::string::npos) << error;
   EXPECT_FALSE(parse_pcd("FIELDS x y z\nSIZE 4 4 4\n", pts, error));
   EXPECT_NE(error.find("DATA"), std::string::npos) << error;
   EXPECT_FALSE(

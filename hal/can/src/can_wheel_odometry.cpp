@@ -40,12 +40,16 @@ void CanWheelOdometry::read_bus() {
       const std::int32_t dr = tick_delta(last_counts_.right_ticks, c.right_ticks);
       const double dt = to_seconds(f.stamp - last_stamp_);
       const std::int32_t limit = geometry_.max_ticks_per_frame * (gap + 1);
-      if (dt <= 0.0 || std::abs(dl) > limit || std::abs(dr) > limit) {
+      const double m_per_tick =
+          2.0 * M_PI * geometry_.wheel_radius_m / geometry_.ticks_per_revolution;
+      const double left = dl * m_per_tick, right = dr * m_per_tick;
+      // A wheel speed (ticks over receive-time step) beyond 3x the commanded limit is a fault,
+      // or two frames stamped nearly together; the factor leaves room for stamp jitter.
+      const double max_step = 3.0 * geometry_.max_wheel_speed_mps * dt;
+      if (dt <= 0.0 || std::abs(dl) > limit || std::abs(dr) > limit || std::abs(left) > max_step ||
+          std::abs(right) > max_step) {
         ++counters_.implausible;
       } else {
-        const double m_per_tick =
-            2.0 * M_PI * geometry_.wheel_radius_m / geometry_.ticks_per_revolution;
-        const double left = dl * m_per_tick, right = dr * m_per_tick;
         WheelOdometrySample s;
         s.stamp = f.stamp;
         s.v_mps = 0.5 * (left + right) / dt;

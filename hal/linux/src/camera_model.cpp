@@ -1,5 +1,7 @@
 #include "colag/linux/camera_model.hpp"
 
+#include <fstream>
+
 #include <opencv2/core.hpp>
 
 namespace colag::linux_hal {
@@ -13,6 +15,11 @@ bool CameraIntrinsics::distorted() const {
 
 bool load_intrinsics(const std::string& path, CameraIntrinsics& out, std::string& error) {
   // cv::FileStorage reports malformed files by throwing; this runs at start-up, never in a task.
+  // OpenCV would also log its own error for a missing file: say it once, ourselves.
+  if (!std::ifstream(path).good()) {
+    error = path + ": cannot open the calibration file";
+    return false;
+  }
   try {
     cv::FileStorage fs(path, cv::FileStorage::READ);
     if (!fs.isOpened()) {

@@ -10,6 +10,10 @@
 
 namespace colag::mock {
 
+namespace {
+constexpr double kMaxCoordinate_m = 1e6;
+}  // namespace
+
 bool load_pcd(const std::string& path, std::vector<Vec3>& points, std::string& error) {
   std::ifstream in(path, std::ios::binary);
   if (!in) {
@@ -79,10 +83,22 @@ bool parse_pcd(const std::string& bytes, std::vector<Vec3>& points, std::string&
     error = "FIELDS, SIZE, TYPE and COUNT must list the same number of entries";
     return false;
   }
-  if (declared < 0) declared = width * height;
-  if (declared < 0 || declared > 100'000'000) {
+  constexpr long long kMaxPoints = 100'000'000;
+  if (declared < 0 && width >= 0 && width <= kMaxPoints && height >= 0 && height <= kMaxPoints)
+    declared = width * height;
+  if (declared < 0 || declared > kMaxPoints) {
     error = "missing or absurd POINTS/WIDTH";
     return false;
+  }
+  for (std::size_t f = 0; f < fields.size(); ++f) {
+    if (sizes[f] != 1 && sizes[f] != 2 && sizes[f] != 4 && sizes[f] != 8) {
+      error = "field " + fields[f] + ": SIZE must be 1, 2, 4 or 8";
+      return false;
+    }
+    if (counts[f] < 1 || counts[f] > 4096) {
+      error = "field " + fields[f] + ": COUNT must be 1..4096";
+      return false;
+    }
   }
   // Where x, y, z are in a point record.
   int index[3] = {-1, -1, -1};
@@ -100,15 +116,18 @@ bool parse_pcd(const std::string& bytes, std::vector<Vec3>& points, std::string&
         column_of[a] = static_cast<int>(column);
       }
     }
-    record += static_cast<std::size_t>(sizes[f]) * static_cast<std::size_t>(std::max(counts[f], 0));
-    column += static_cast<std::size_t>(std::max(counts[f], 0));
+    record += static_cast<std::size_t>(sizes[f]) * static_cast<std::size_t>(counts[f]);
+    column += static_cast<std::size_t>(counts[f]);
   }
   if (index[0] < 0 || index[1] < 0 || index[2] < 0) {
     error = "the cloud needs x, y and z fields";
     return false;
   }
   points.clear();
-  points.reserve(static_cast<std::size_t>(declared));
+  // Never trust the header with memory: a point takes at least 6 bytes of text ("0 0 0\n") or
+  // one record of binary data.
+  const std::size_t body_bytes = bytes.size() - pos;
+  points.reserve(std::min(static_cast<std::size_t>(declared), body_bytes / 6));
   if (data == "ascii") {
     std::istringstream body(bytes.substr(pos));
     std::string line;
@@ -129,7 +148,7 @@ bool parse_pcd(const std::string& bytes, std::vector<Vec3>& points, std::string&
                           values[static_cast<std::size_t>(column_of[2])]);
     }
   } else if (data == "binary") {
-    if (bytes.size() - pos < record * static_cast<std::size_t>(declared)) {
+    if (body_bytes / record < static_cast<std::size_t>(declared)) {
       error = "binary data truncated: " + std::to_string(declared) + " points of " +
               std::to_string(record) + " bytes declared";
       return false;
@@ -162,6 +181,10 @@ bool parse_pcd(const std::string& bytes, std::vector<Vec3>& points, std::string&
       error = "a point is not finite";
       return false;
     }
+    if (q.cwiseAbs().maxCoeff() > kMaxCoordinate_m) {
+      error = "a point is more than 1000 km from the origin (units not metres?)";
+      return false;
+    }
   }
   return true;
 }
@@ -171,6 +194,8 @@ BoxWorld box_world_from_points(const std::vector<Vec3>& points, double ground_z,
   std::map<std::pair<long, long>, double> top;  // column -> highest point
   double min_x = 1e18, max_x = -1e18, min_y = 1e18, max_y = -1e18;
   for (const Vec3& p : points) {
+    // Far or non-finite points would overflow the column indices: parse_pcd refuses them.
+    if (!all_finite(p) || p.cwiseAbs().maxCoeff() > kMaxCoordinate_m) continue;
     min_x = std::min(min_x, p.x());
     max_x = std::max(max_x, p.x());
     min_y = std::min(min_y, p.y());
@@ -181,7 +206,7 @@ BoxWorld box_world_from_points(const std::vector<Vec3>& points, double ground_z,
     auto [it, inserted] = top.try_emplace(c, p.z());
     if (!inserted) it->second = std::max(it->second, p.z());
   }
-  if (!points.empty()) {
+  if (min_x <= max_x) {
     world.min_x_m = min_x;
     world.max_x_m = max_x;
     world.min_y_m = min_y;

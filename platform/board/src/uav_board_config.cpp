@@ -6,10 +6,9 @@
 
 namespace colag::board {
 
-bool load_uav_config(const std::string& path, UavBoardConfig& out, std::string& error) {
-  error.clear();
-  YAML::Node root;
-  if (!parse(path, root, error)) return false;
+namespace {
+bool read_uav_config(const YAML::Node& root, const std::string& path, UavBoardConfig& out,
+                     std::string& error) {
   Reader r(path, error);
   const YAML::Node& doc = root;
   UavBoardConfig c;
@@ -70,12 +69,7 @@ bool load_uav_config(const std::string& path, UavBoardConfig& out, std::string& 
   if (r.ok() && c.calibration_file.empty())
     r.fail("camera.calibration", "required (an OpenCV calibration YAML)");
   if (r.ok()) {
-    // Relative to the configuration file.
-    std::string file = c.calibration_file;
-    if (!file.empty() && file[0] != '/') {
-      const auto slash = path.find_last_of('/');
-      if (slash != std::string::npos) file = path.substr(0, slash + 1) + file;
-    }
+    const std::string file = relative_to(path, c.calibration_file);
     std::string cal_error;
     if (!linux_hal::load_intrinsics(file, c.rpe.camera, cal_error))
       r.fail("camera.calibration", cal_error);
@@ -84,6 +78,20 @@ bool load_uav_config(const std::string& path, UavBoardConfig& out, std::string& 
   if (!r.ok()) return false;
   out = c;
   return true;
+}
+}  // namespace
+
+bool load_uav_config(const std::string& path, UavBoardConfig& out, std::string& error) {
+  error.clear();
+  YAML::Node root;
+  return parse(path, root, error) && read_uav_config(root, path, out, error);
+}
+
+bool parse_uav_config(const std::string& text, const std::string& name, UavBoardConfig& out,
+                      std::string& error) {
+  error.clear();
+  YAML::Node root;
+  return parse_text(text, name, root, error) && read_uav_config(root, name, out, error);
 }
 
 }  // namespace colag::board

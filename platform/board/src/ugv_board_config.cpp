@@ -11,12 +11,8 @@ std::uint32_t can_id(Reader& r, const YAML::Node& can, const char* key, std::uin
   return id;
 }
 
-}  // namespace
-
-bool load_ugv_config(const std::string& path, UgvBoardConfig& out, std::string& error) {
-  error.clear();
-  YAML::Node root;
-  if (!parse(path, root, error)) return false;
+bool read_ugv_config(const YAML::Node& root, const std::string& path, UgvBoardConfig& out,
+                     std::string& error) {
   Reader r(path, error);
   const YAML::Node& doc = root;  // const access never inserts keys
   UgvBoardConfig c;
@@ -70,6 +66,20 @@ bool load_ugv_config(const std::string& path, UgvBoardConfig& out, std::string& 
   if (!r.ok()) return false;
   out = c;
   return true;
+}
+}  // namespace
+
+bool load_ugv_config(const std::string& path, UgvBoardConfig& out, std::string& error) {
+  error.clear();
+  YAML::Node root;
+  return parse(path, root, error) && read_ugv_config(root, path, out, error);
+}
+
+bool parse_ugv_config(const std::string& text, const std::string& name, UgvBoardConfig& out,
+                      std::string& error) {
+  error.clear();
+  YAML::Node root;
+  return parse_text(text, name, root, error) && read_ugv_config(root, name, out, error);
 }
 
 }  // namespace colag::board

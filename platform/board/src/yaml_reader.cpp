@@ -1,5 +1,7 @@
 #include "yaml_reader.hpp"
 
+#include <utility>
+
 namespace colag::board {
 
 bool parse(const std::string& path, YAML::Node& root, std::string& error) {
@@ -16,11 +18,50 @@ bool parse(const std::string& path, YAML::Node& root, std::string& error) {
   return true;
 }
 
+bool parse_text(const std::string& text, const std::string& name, YAML::Node& root,
+                std::string& error) {
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    error = name + ": line " + std::to_string(e.mark.line + 1) + ": " + e.msg;
+    return false;
+  }
+  if (root.IsNull()) root = YAML::Node(YAML::NodeType::Map);
+  return true;
+}
+
+std::string relative_to(const std::string& config_file, const std::string& path) {
+  if (path.empty() || path[0] == '/') return path;
+  const auto slash = config_file.find_last_of('/');
+  return slash == std::string::npos ? path : config_file.substr(0, slash + 1) + path;
+}
+
 void read_common(Reader& r, const YAML::Node& doc, CommonBoardConfig& c) {
   const YAML::Node dds = child(doc, "dds");
-  r.only(dds, "dds", {"domain", "partition"});
+  r.only(dds, "dds", {"domain", "partition", "security"});
   r.get(dds, "dds", "domain", c.dds_domain, 0u, 232u);  // DDS allows domain ids 0..232
   r.get(dds, "dds", "partition", c.dds_partition);
+  // dds.security: the files scripts/security/make-pki writes for this robot.
+  const YAML::Node sec = child(dds, "security");
+  r.only(sec, "dds.security",
+         {"identity_ca", "certificate", "private_key", "permissions_ca", "governance",
+          "permissions", "plugin_dir"});
+  platform::DdsSecurityConfig& s = c.dds_security;
+  const std::pair<const char*, std::string*> files[] = {
+      {"identity_ca", &s.identity_ca}, {"certificate", &s.certificate},
+      {"private_key", &s.private_key}, {"permissions_ca", &s.permissions_ca},
+      {"governance", &s.governance},   {"permissions", &s.permissions},
+  };
+  for (const auto& [key, value] : files) {
+    r.get(sec, "dds.security", key, *value);
+    *value = relative_to(r.file(), *value);
+  }
+  r.get(sec, "dds.security", "plugin_dir", s.plugin_dir);
+  if (s.enabled()) {
+    for (const auto& [key, value] : files)
+      if (value->empty())
+        r.fail(std::string("dds.security.") + key, "required when security is on");
+  }
   const YAML::Node rt = child(doc, "realtime");
   r.only(rt, "realtime", {"fifo_priority", "lock_memory"});
   r.get(rt, "realtime", "fifo_priority", c.realtime.fifo_priority, 0, 99);

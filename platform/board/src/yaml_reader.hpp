@@ -23,6 +23,7 @@ class Reader {
   Reader(const std::string& file, std::string& error) : file_(file), error_(error) {}
 
   bool ok() const { return error_.empty(); }
+  const std::string& file() const { return file_; }
   void fail(const std::string& key, const std::string& problem) {
     if (ok()) error_ = file_ + ": " + key + ": " + problem;
   }
@@ -32,6 +33,8 @@ class Reader {
     if (!node) return;
     if (!node.IsMap()) return fail(path.empty() ? "(top level)" : path, "expected a mapping");
     for (const auto& kv : node) {
+      if (!kv.first.IsScalar())
+        return fail(path.empty() ? "(top level)" : path, "a key is not a name");
       const std::string key = kv.first.as<std::string>();
       if (allowed.count(key) == 0) fail(join(path, key), "unknown key");
     }
@@ -70,7 +73,7 @@ class Reader {
   // A period given as a rate in Hz.
   void rate(const YAML::Node& node, const std::string& path, const char* key, Duration& out) {
     double hz = 0.0;
-    bool present = node && node[key];
+    const bool present = static_cast<bool>(child(node, key));
     get(node, path, key, hz, 0.1, 1000.0);
     if (present && ok()) out = period_of_hz(hz);
   }
@@ -127,6 +130,11 @@ class Reader {
 
 // Loads `path` (an empty file is an empty mapping); false with `error` set on failure.
 bool parse(const std::string& path, YAML::Node& root, std::string& error);
+// The same for a document in memory; errors name it `name`.
+bool parse_text(const std::string& text, const std::string& name, YAML::Node& root,
+                std::string& error);
+// A path from a configuration file: relative paths are relative to the file's directory.
+std::string relative_to(const std::string& config_file, const std::string& path);
 // The dds: and realtime: sections both programs share.
 void read_common(Reader& r, const YAML::Node& doc, CommonBoardConfig& c);
 

@@ -6,6 +6,7 @@
 // silently fall back to a default on a robot).
 #include <string>
 
+#include "colag/platform/dds_security_config.hpp"
 #include "colag/platform/realtime_executor.hpp"
 
 namespace colag::board {
@@ -13,6 +14,7 @@ namespace colag::board {
 struct CommonBoardConfig {
   std::uint32_t dds_domain = 0;
   std::string dds_partition;
+  platform::DdsSecurityConfig dds_security;  // dds.security: all six files, or none (off)
   platform::RealtimeOptions realtime{.fifo_priority = 50, .lock_memory = true};
 };
 

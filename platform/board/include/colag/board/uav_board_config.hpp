@@ -17,5 +17,8 @@ struct UavBoardConfig {
 
 // False with `error` = "FILE: key.path: problem".
 bool load_uav_config(const std::string& path, UavBoardConfig& out, std::string& error);
+// The same for a document in memory (tests, fuzzing); `name` stands for the file in errors.
+bool parse_uav_config(const std::string& text, const std::string& name, UavBoardConfig& out,
+                      std::string& error);
 
 }  // namespace colag::board

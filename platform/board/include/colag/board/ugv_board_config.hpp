@@ -20,5 +20,8 @@ struct UgvBoardConfig {
 
 // False with `error` = "FILE: key.path: problem".
 bool load_ugv_config(const std::string& path, UgvBoardConfig& out, std::string& error);
+// The same for a document in memory (tests, fuzzing); `name` stands for the file in errors.
+bool parse_ugv_config(const std::string& text, const std::string& name, UgvBoardConfig& out,
+                      std::string& error);
 
 }  // namespace colag::board

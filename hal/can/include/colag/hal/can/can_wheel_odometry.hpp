@@ -29,7 +29,7 @@ struct CanOdometryCounters {
   std::uint64_t bad_checksum = 0;
   std::uint64_t lost_frames = 0;  // alive-counter gaps
   std::uint64_t duplicates = 0;   // alive counter did not advance
-  std::uint64_t implausible = 0;  // tick steps beyond max_ticks_per_frame, or time not advancing
+  std::uint64_t implausible = 0;  // tick steps or speeds beyond the limits, or time not advancing
   std::uint64_t overflowed = 0;   // samples dropped because the task did not poll
 };
 
@@ -52,7 +52,6 @@ class CanWheelOdometry final : public WheelOdometry {
   bool have_counts_ = false;
   EncoderCounts last_counts_{};
   TimePoint last_stamp_{};
-  bool have_alive_ = false;
   WheelSpeeds speeds_{};
   RingBuffer<WheelOdometrySample, limits::kOdometryBacklog> pending_;
   CanOdometryCounters counters_;

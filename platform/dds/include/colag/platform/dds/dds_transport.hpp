@@ -11,6 +11,7 @@
 
 #include "colag/common/limits.hpp"
 #include "colag/common/static_vector.hpp"
+#include "colag/platform/dds_security_config.hpp"
 #include "colag/platform/transport.hpp"
 
 namespace colag::platform::dds {
@@ -23,6 +24,8 @@ struct DdsConfig {
   // Topics this participant may write (a writer is created at init for each): a UGV need not
   // announce writers for map patches, and DDS Security permissions can forbid them.
   std::array<bool, msg::kTopicCount> publishes = {true, true, true, true, true, true};
+  // DDS Security (authentication, access control, encryption); off when empty.
+  DdsSecurityConfig security;
 };
 
 struct DdsStats {
@@ -62,6 +65,7 @@ class DdsTransport final : public Transport {
   void dispatch(msg::Topic topic, const void* sample, TimePoint now);
   dds_qos_t* make_qos(const msg::TopicInfo& info) const;
   Status fail(dds_return_t rc, const char* what);
+  Status security_qos(dds_qos_t* qos) const;
 
   DdsConfig config_;
   dds_entity_t participant_ = 0;

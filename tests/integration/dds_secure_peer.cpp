@@ -1,0 +1,110 @@
+// colag_dds_secure_peer: the other processes of the DDS Security test.
+// Usage: colag_dds_secure_peer ROLE DOMAIN_ID PKI_DIR SECONDS
+//   uav       fleet identity of the UAV: publishes map patches and relative poses for UGV 1
+//             (uav_id 100) every 50 ms; exits 0 if it heard UGV 1's status, 1 if not
+//   rogue     an identity from another CA claiming to be the UAV: publishes the same with uav_id 66
+//   plain     no security at all: publishes the same with uav_id 77
+//   forger    the intruder's valid identity with self-signed UAV permissions: publishes the same
+//             with uav_id 88
+//   intruder  a valid fleet identity allowed to publish UGV status only: tries to create map
+//             patch and relative pose writers; exits 3 when access control refuses them, 0 if it
+//             could publish (a failure of the test)
+// Exit 2: usage or set-up error.
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <thread>
+
+#include "colag/platform/dds/dds_transport.hpp"
+#include "colag/platform/readers.hpp"
+#include "dds_test_env.hpp"
+
+using namespace colag;
+using namespace std::chrono_literals;
+
+namespace {
+
+platform::DdsSecurityConfig identity(const std::string& pki, const std::string& who,
+                                     const std::string& ca) {
+  platform::DdsSecurityConfig s;
+  s.identity_ca = ca;
+  s.certificate = pki + "/" + who + "/identity.pem";
+  s.private_key = pki + "/" + who + "/key.pem";
+  s.permissions_ca = pki + "/ca.pem";
+  s.governance = pki + "/governance.p7s";
+  s.permissions = pki + "/" + who + "/permissions.p7s";
+  return s;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 5) {
+    std::fprintf(
+        stderr,
+        "usage: colag_dds_secure_peer uav|rogue|plain|forger|intruder DOMAIN PKI SECONDS\n");
+    return 2;
+  }
+  const std::string role = argv[1], pki = argv[3];
+  const auto run_for = std::chrono::seconds(std::atoi(argv[4]));
+  test::confine_dds_to_loopback();
+  platform::dds::DdsConfig cfg;
+  cfg.domain_id = static_cast<std::uint32_t>(std::atoi(argv[2]));
+  RobotId uav_id = 100;
+  // The UAV's writers only (its permissions allow nothing else); the intruder tries all.
+  if (role != "intruder") cfg.publishes = {true, true, true, false, false, true};
+  if (role == "uav") {
+    cfg.security = identity(pki, "uav", pki + "/ca.pem");
+  } else if (role == "rogue") {
+    cfg.security = identity(pki, "rogue", pki + "/rogue/ca/ca.pem");
+    uav_id = 66;
+  } else if (role == "plain") {
+    uav_id = 77;
+  } else if (role == "forger") {
+    cfg.security = identity(pki, "forger", pki + "/ca.pem");
+    cfg.security.permissions_ca = pki + "/rogue/ca/ca.pem";  // trusts its own signature
+    cfg.security.governance = pki + "/forger/governance.p7s";
+    uav_id = 88;
+  } else if (role == "intruder") {
+    cfg.security = identity(pki, "intruder", pki + "/ca.pem");
+  } else {
+    std::fprintf(stderr, "colag_dds_secure_peer: unknown role %s\n", role.c_str());
+    return 2;
+  }
+
+  platform::dds::DdsTransport dds;
+  if (Status s = dds.init(cfg); !s) {
+    std::printf("colag_dds_secure_peer %s: %s (%s)\n", role.c_str(), s.message(),
+                dds_strretcode(dds.last_error()));
+    // The intruder's writers for the UAV's topics must be refused by access control.
+    return role == "intruder" && dds.last_error() == DDS_RETCODE_NOT_ALLOWED_BY_SECURITY ? 3 : 2;
+  }
+  if (role == "intruder") {
+    std::printf("colag_dds_secure_peer intruder: access control let it publish map patches\n");
+    return 0;
+  }
+  platform::LatestReader<msg::UgvStatus> status;
+  if (!status.attach(dds, 1)) return 2;
+
+  const auto end = std::chrono::steady_clock::now() + run_for;
+  std::uint32_t seq = 0;
+  while (std::chrono::steady_clock::now() < end) {
+    msg::MapPatch patch;
+    patch.uav_id = uav_id;
+    patch.ugv_id = 1;
+    patch.seq = ++seq;
+    patch.resolution_m = 0.1;
+    (void)dds.publish(patch);
+    msg::RelativePose rpe;
+    rpe.uav_id = uav_id;
+    rpe.ugv_id = 1;
+    (void)dds.publish(rpe);
+    dds.poll(TimePoint{});
+    std::this_thread::sleep_for(50ms);
+  }
+  const bool heard = status.has_value();
+  std::printf("colag_dds_secure_peer %s: sent %u patches; UGV 1's status %s\n", role.c_str(), seq,
+              heard ? "received" : "never received");
+  return role == "uav" && !heard ? 1 : 0;
+}

@@ -1,0 +1,126 @@
+// DDS Security end to end (scripts/security/make-pki material, Cyclone's plugins): UGV 1 runs
+// here with its fleet identity while other processes publish map patches and relative poses for
+// it: the UAV (fleet identity), a rogue (identity from another CA, claiming to be the UAV), a
+// participant without security, an intruder (valid identity, no permission for those topics) and a
+// forger (the intruder's identity with UAV permissions it signed itself).
+// Only the UAV's samples may arrive, and the UAV must hear the UGV.
+#include <gtest/gtest.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <chrono>
+#include <filesystem>
+#include <string>
+#include <thread>
+
+#include "colag/platform/dds/dds_transport.hpp"
+#include "dds_test_env.hpp"
+
+extern char** environ;
+
+namespace {
+
+using namespace colag;
+using namespace std::chrono_literals;
+
+// Counts samples per sending UAV id.
+template <class Msg>
+class CountBySender final : public platform::SampleSink {
+ public:
+  void on_sample(msg::Topic, const void* sample, TimePoint) override {
+    const auto& m = *static_cast<const Msg*>(sample);
+    if (m.uav_id == 100)
+      ++fleet;
+    else
+      ++other;
+  }
+  int fleet = 0, other = 0;
+};
+
+pid_t spawn(const char* role, std::uint32_t domain, const std::string& pki, const char* seconds) {
+  const std::string d = std::to_string(domain);
+  char* argv[] = {const_cast<char*>(COLAG_DDS_SECURE_PEER_PATH),
+                  const_cast<char*>(role),
+                  const_cast<char*>(d.c_str()),
+                  const_cast<char*>(pki.c_str()),
+                  const_cast<char*>(seconds),
+                  nullptr};
+  pid_t pid = -1;
+  if (posix_spawn(&pid, COLAG_DDS_SECURE_PEER_PATH, nullptr, nullptr, argv, environ) != 0)
+    return -1;
+  return pid;
+}
+int exit_code(pid_t pid) {
+  int status = 0;
+  if (waitpid(pid, &status, 0) != pid || !WIFEXITED(status)) return -1;
+  return WEXITSTATUS(status);
+}
+
+TEST(DdsSecurity, OnlyTheFleetUavReachesTheUgvAndTheMissionTrafficFlows) {
+  const std::string pki = COLAG_TEST_PKI_DIR;
+  if (!std::filesystem::exists(pki + "/ugv1/identity.pem"))
+    GTEST_SKIP() << "no test PKI in " << pki << " (the dds.security.pki fixture creates it)";
+  test::confine_dds_to_loopback();
+  const std::uint32_t domain = test::private_domain_id();
+
+  // The intruder's writers are refused when it starts.
+  EXPECT_EQ(exit_code(spawn("intruder", domain, pki, "1")), 3);
+
+  platform::dds::DdsConfig cfg;
+  cfg.domain_id = domain;
+  cfg.security.identity_ca = pki + "/ca.pem";
+  cfg.security.certificate = pki + "/ugv1/identity.pem";
+  cfg.security.private_key = pki + "/ugv1/key.pem";
+  cfg.security.permissions_ca = pki + "/ca.pem";
+  cfg.security.governance = pki + "/governance.p7s";
+  cfg.security.permissions = pki + "/ugv1/permissions.p7s";
+  cfg.publishes = {false, false, false, true, true, false};  // collision info, status
+  platform::dds::DdsTransport dds;
+  ASSERT_TRUE(dds.init(cfg)) << dds_strretcode(dds.last_error());
+  CountBySender<msg::MapPatch> patches;
+  CountBySender<msg::RelativePose> poses;
+  ASSERT_TRUE(dds.subscribe(msg::Topic::kMapPatch, 1, patches));
+  ASSERT_TRUE(dds.subscribe(msg::Topic::kRelativePose, 1, poses));
+
+  const pid_t uav = spawn("uav", domain, pki, "8");
+  const pid_t rogue = spawn("rogue", domain, pki, "8");
+  const pid_t plain = spawn("plain", domain, pki, "8");
+  const pid_t forger = spawn("forger", domain, pki, "8");
+  ASSERT_GT(uav, 0);
+  ASSERT_GT(rogue, 0);
+  ASSERT_GT(plain, 0);
+  ASSERT_GT(forger, 0);
+  const auto end = std::chrono::steady_clock::now() + 9s;
+  while (std::chrono::steady_clock::now() < end) {
+    msg::UgvStatus st;
+    st.ugv_id = 1;
+    st.mode = msg::UgvMode::kDriving;
+    (void)dds.publish(st);
+    dds.poll(TimePoint{});
+    std::this_thread::sleep_for(50ms);
+  }
+  EXPECT_EQ(exit_code(uav), 0) << "the UAV never heard UGV 1";
+  EXPECT_EQ(exit_code(rogue), 0);
+  EXPECT_EQ(exit_code(plain), 0);
+  EXPECT_EQ(exit_code(forger), 0);
+  // Authentication takes a few hundred ms; then the UAV's ~20 samples/s arrive.
+  EXPECT_GE(patches.fleet, 40);
+  EXPECT_GE(poses.fleet, 40);
+  EXPECT_EQ(patches.other, 0);
+  EXPECT_EQ(poses.other, 0);
+  std::printf(
+      "UGV 1 accepted %d patches and %d relative poses from the fleet UAV, %d / %d from "
+      "others\n",
+      patches.fleet, poses.fleet, patches.other, poses.other);
+}
+
+TEST(DdsSecurity, AMissingFileIsNamedBeforeDdsStarts) {
+  platform::dds::DdsConfig cfg;
+  cfg.security.identity_ca = "/nonexistent/ca.pem";
+  platform::dds::DdsTransport dds;
+  const Status s = dds.init(cfg);
+  EXPECT_FALSE(s);
+  EXPECT_NE(std::string(s.message()).find("identity_ca"), std::string::npos) << s.message();
+}
+
+}  // namespace
