@@ -142,6 +142,8 @@ void to_idl(const msg::UgvStatus& in, IdlSample<msg::UgvStatus>& out) {
   copy(in.goal_m, s.goal_m);
   s.waiting_time_s = in.waiting_time_s;
   s.rejected_inputs = in.rejected_inputs;
+  s.overruns = in.overruns;
+  s.degradation = in.degradation;
 }
 Status from_idl(const colag_idl_UgvStatus& in, msg::UgvStatus& out) {
   if (in.mode > static_cast<std::uint8_t>(msg::UgvMode::kFault)) {
@@ -158,6 +160,8 @@ Status from_idl(const colag_idl_UgvStatus& in, msg::UgvStatus& out) {
   copy(in.goal_m, out.goal_m);
   out.waiting_time_s = in.waiting_time_s;
   out.rejected_inputs = in.rejected_inputs;
+  out.overruns = in.overruns;
+  out.degradation = in.degradation;
   return Status::ok();
 }
 

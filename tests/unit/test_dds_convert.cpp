@@ -98,6 +98,8 @@ TEST(DdsConvert, RoundTripEveryTypeOnRandomSamples) {
     f.fill(st.goal_m);
     st.waiting_time_s = f.real();
     st.rejected_inputs = f.u32();
+    st.overruns = f.u32();
+    st.degradation = static_cast<std::uint8_t>(f.below(3));
     EXPECT_TRUE(round_trip(st) == st);
 
     msg::SupportPlan sp;

@@ -21,6 +21,8 @@ class RecordingTask final : public Task {
                 const hal::Clock* clock = nullptr)
       : name_(name), log_(log), busy_(busy), clock_(clock) {}
   const char* name() const override { return name_; }
+  void on_overrun(Duration) override { ++reported_overruns; }
+  std::uint64_t reported_overruns = 0;
   void step(TimePoint now) override {
     log_.emplace_back(name_[0], now);
     if (clock_ != nullptr) {
@@ -90,6 +92,7 @@ TEST(RealtimeExecutor, CountsAStepLongerThanItsBudgetAsAnOverrun) {
   EXPECT_GT(st.steps, 0u);
   EXPECT_EQ(st.overruns, st.steps);  // busy-waiting 3 ms always exceeds a 1 ms budget
   EXPECT_GE(st.longest_step, 3ms);
+  EXPECT_EQ(slow.reported_overruns, st.overruns);  // and the task heard of each
 }
 
 TEST(RealtimeExecutor, ATaskLongerThanItsPeriodSkipsActivationsInsteadOfBursting) {

@@ -85,8 +85,19 @@ class SupportLog final : public platform::SampleSink {
   msg::CollisionInfo last;
 };
 
+// What the real-time executor does when the planning loop overruns: report it every step.
+class OverrunReporter final : public platform::Task {
+ public:
+  explicit OverrunReporter(platform::Task& loop) : loop_(loop) {}
+  const char* name() const override { return "overruns"; }
+  void step(TimePoint) override { loop_.on_overrun(std::chrono::milliseconds(30)); }
+
+ private:
+  platform::Task& loop_;
+};
+
 struct Rig {
-  explicit Rig(Vec2 goal, Vec3 uav = Vec3(2, 0, 2)) {
+  explicit Rig(Vec2 goal, Vec3 uav = Vec3(2, 0, 2), bool report_overruns = false) {
     config.id = 0;
     config.goal = goal;
     bus = std::make_unique<platform::LoopbackTransport>(1);
@@ -98,6 +109,10 @@ struct Rig {
     EXPECT_TRUE(ex.add({world.get(), 20ms, 1ms}));
     EXPECT_TRUE(ex.add({&ugv->control_loop(), 20ms, 1ms}));
     EXPECT_TRUE(ex.add({&ugv->planning_loop(), 100ms, 10ms}));
+    if (report_overruns) {
+      reporter = std::make_unique<OverrunReporter>(ugv->planning_loop());
+      EXPECT_TRUE(ex.add({reporter.get(), 100ms, 1ms}));
+    }
     EXPECT_TRUE(ex.init());
   }
   void publish_map(double x0, double y0, double x1, double y1) {
@@ -139,6 +154,7 @@ struct Rig {
   std::unique_ptr<MiniWorld> world;
   std::unique_ptr<UgvNavTask> ugv;
   std::unique_ptr<platform::TransportPump> pump;
+  std::unique_ptr<OverrunReporter> reporter;
   platform::LockstepExecutor ex;
 };
 
@@ -191,6 +207,19 @@ TEST(UgvNavTask, StopsBeforeTheUnknownAsksForSupportAndGoesOnOnceItIsMapped) {
   EXPECT_GE(rig.support.cancels, 1);
   EXPECT_TRUE(rig.support.last.cancel);
   EXPECT_LT((rig.world->truth.p - Vec2(6.0, 0.0)).norm(), 0.35);
+}
+
+TEST(UgvNavTask, PersistentOverrunsShortenThePredictionButItStillStopsBeforeTheUnknown) {
+  Rig rig(Vec2(6.0, 0.0), Vec3(2, 0, 2), /*report_overruns=*/true);
+  rig.publish_map(-3.2, -3.2, 2.5, 3.2);  // known free up to x = 2.5, unknown beyond
+  ASSERT_TRUE(
+      rig.run_until([&] { return rig.ugv->mode() == msg::UgvMode::kWaitingForSupport; }, 20s));
+  rig.ex.run_until(rig.ex.now() + 2s);
+  EXPECT_EQ(rig.ugv->mode(), msg::UgvMode::kWaitingForSupport);
+  EXPECT_LT(rig.world->truth.p.x() + 0.25, 2.5);  // the body never entered the unknown
+  EXPECT_EQ(rig.ugv->health().degradation, OverrunGovernor::kMaxLevel);
+  EXPECT_GT(rig.ugv->health().overruns, 30u);
+  EXPECT_GE(rig.support.requests, 1);  // later than with the full look-ahead, but asked
 }
 
 TEST(UgvNavTask, WheelOdometryLossStopsTheRobotAndReportsAFault) {

@@ -79,7 +79,7 @@ void CollisionPredictor::predict(const Pose2& pose, const Mat3& covariance, cons
   std::size_t i = start;
   for (int step = 1; step < static_cast<int>(limits::kMaxPredictionSteps); ++step) {
     const double t = step * config_.dt_s;
-    if (t > config_.max_horizon_s) return;
+    if (t > config_.max_horizon_s * horizon_scale_) return;
     i = traj.index_at_time(t0 + t, i);
     const TrajectorySample& s = traj[i];
     if (config_.use_uncertainty) {
@@ -87,7 +87,7 @@ void CollisionPredictor::predict(const Pose2& pose, const Mat3& covariance, cons
       propagate(x, P, s.v_mps, s.omega_radps, config_.dt_s, noise_);
     }
     if (test(s.p, t, s.yaw_rad)) return;
-    if ((s.p - origin).norm() >= config_.horizon_m || i + 1 >= traj.size()) return;
+    if ((s.p - origin).norm() >= config_.horizon_m * horizon_scale_ || i + 1 >= traj.size()) return;
   }
 }
 

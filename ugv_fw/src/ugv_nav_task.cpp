@@ -32,8 +32,10 @@ UgvNavTask::UgvNavTask(const UgvNavConfig& config, platform::Transport& transpor
       transport_(transport),
       odometry_(odometry),
       drive_(drive),
-      control_loop_(*this, "ugv_control", &UgvNavTask::init, &UgvNavTask::control_step),
-      planning_loop_(*this, "ugv_planning", &UgvNavTask::init, &UgvNavTask::planning_step),
+      control_loop_(*this, "ugv_control", &UgvNavTask::init, &UgvNavTask::control_step,
+                    &UgvNavTask::on_overrun),
+      planning_loop_(*this, "ugv_planning", &UgvNavTask::init, &UgvNavTask::planning_step,
+                     &UgvNavTask::on_overrun),
       ekf_(config.ekf),
       map_(config.map),
       planner_(config.planner),
@@ -165,7 +167,15 @@ void UgvNavTask::drive(TimePoint now, double dt) {
 // --- planning loop (10 Hz)
 // ------------------------------------------------------------------------
 
+void UgvNavTask::on_overrun(Duration) {
+  governor_.on_overrun();
+  ++health_.overruns;
+}
+
 void UgvNavTask::planning_step(TimePoint now) {
+  // Persistent overruns (either loop): predict less far ahead rather than fall behind.
+  health_.degradation = governor_.update();
+  predictor_.set_horizon_scale(1.0 - 0.25 * health_.degradation);
   read_map_patches(now);
   read_other_ugvs(now);
   if (!ekf_.initialized()) {
@@ -333,6 +343,8 @@ void UgvNavTask::publish_status(TimePoint now) {
   s.goal_m[1] = config_.goal.y();
   s.waiting_time_s = waiting_time_s();
   s.rejected_inputs = static_cast<std::uint32_t>(health_.rejected_inputs());
+  s.overruns = static_cast<std::uint32_t>(health_.overruns);
+  s.degradation = static_cast<std::uint8_t>(health_.degradation);
   (void)transport_.publish(s);
 }
 

@@ -28,6 +28,8 @@ struct UgvStatus {
   double goal_m[2] = {};
   double waiting_time_s = 0.0;        // accumulated time stopped for support
   std::uint32_t rejected_inputs = 0;  // health: malformed or out-of-gate inputs so far
+  std::uint32_t overruns = 0;         // health: task steps over their budget so far
+  std::uint8_t degradation = 0;       // health: 0 = full work; > 0 = shedding work (overruns)
   friend bool operator==(const UgvStatus&, const UgvStatus&) = default;
 };
 

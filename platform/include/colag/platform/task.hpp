@@ -14,6 +14,10 @@ class Task {
   // Called once, in table order, before the first step; may allocate.
   virtual Status init(TimePoint /*now*/) { return Status::ok(); }
   virtual void step(TimePoint now) = 0;
+  // The real-time executor reports a step that took longer than its budget (or activations it
+  // had to skip), so that the task can shed work. Simulation does not report: a seeded run must
+  // not depend on the speed of the host.
+  virtual void on_overrun(Duration /*step_time*/) {}
 };
 
 // A Task that runs one member function of an owner object, so that one robot task can offer
@@ -25,17 +29,23 @@ class MemberLoop final : public Task {
  public:
   using Step = void (Owner::*)(TimePoint);
   using Init = Status (Owner::*)(TimePoint);
-  MemberLoop(Owner& owner, const char* name, Init init_fn, Step step_fn)
-      : owner_(owner), name_(name), init_(init_fn), step_(step_fn) {}
+  using Overrun = void (Owner::*)(Duration);
+  MemberLoop(Owner& owner, const char* name, Init init_fn, Step step_fn,
+             Overrun overrun_fn = nullptr)
+      : owner_(owner), name_(name), init_(init_fn), step_(step_fn), overrun_(overrun_fn) {}
   const char* name() const override { return name_; }
   Status init(TimePoint now) override { return (owner_.*init_)(now); }
   void step(TimePoint now) override { (owner_.*step_)(now); }
+  void on_overrun(Duration step_time) override {
+    if (overrun_ != nullptr) (owner_.*overrun_)(step_time);
+  }
 
  private:
   Owner& owner_;
   const char* name_;
   Init init_;
   Step step_;
+  Overrun overrun_;
 };
 
 // One row of an executor's schedule table.

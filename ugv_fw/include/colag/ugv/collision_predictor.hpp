@@ -12,6 +12,7 @@
 // obstacle, a step is a collision only if its worst case (centre distance minus the ellipse's
 // semi-major axis) comes closer to an occupied cell than the robot is now, or than the
 // inflation radius when it is outside it.
+#include <algorithm>
 #include <cstdint>
 #include <span>
 
@@ -59,6 +60,11 @@ class CollisionPredictor {
                Prediction& out);
 
   const PredictorConfig& config() const { return config_; }
+  // Shortens the look-ahead (distance and time) to this share of the configured one: the
+  // planning loop's way to shed work when it overruns. Clamped to [0.5, 1]: half of the default
+  // 2 m still covers the robot stop distance (1.5 s at 0.5 m/s).
+  void set_horizon_scale(double scale) { horizon_scale_ = std::clamp(scale, 0.5, 1.0); }
+  double horizon_scale() const { return horizon_scale_; }
 
  private:
   // Which obstacle, if any, the ellipse touches: a blocked cell not in excused_ that is near
@@ -70,6 +76,7 @@ class CollisionPredictor {
   static constexpr double kDistanceSearch_m = 1.0;
   PredictorConfig config_;
   OdometryNoise noise_;
+  double horizon_scale_ = 1.0;
   // Blocked cells under the current ellipse (ascending indices): touching them is not news.
   StaticVector<std::uint32_t, kMaxExcused> excused_;
 };

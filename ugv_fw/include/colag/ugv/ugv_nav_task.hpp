@@ -9,6 +9,7 @@
 #include <array>
 #include <cstdint>
 
+#include "colag/common/overrun_governor.hpp"
 #include "colag/hal/drive.hpp"
 #include "colag/hal/wheel_odometry.hpp"
 #include "colag/platform/readers.hpp"
@@ -31,6 +32,8 @@ struct UgvHealth {
   std::uint64_t plans = 0;
   std::uint64_t plan_failures = 0;
   std::uint64_t support_messages = 0;
+  std::uint64_t overruns = 0;  // steps of either loop over budget (real-time executor only)
+  int degradation = 0;         // OverrunGovernor level: 0 = full prediction horizon
 
   std::uint64_t rejected_inputs() const {
     return odometry_rejected + uav_odometry_rejected + rpe_rejected + rpe_unmatched + rpe_outliers +
@@ -69,6 +72,7 @@ class UgvNavTask {
   Status init(TimePoint now);
   void control_step(TimePoint now);
   void planning_step(TimePoint now);
+  void on_overrun(Duration step_time);
 
   // control loop parts
   void read_odometry(TimePoint now);
@@ -132,6 +136,7 @@ class UgvNavTask {
   double v_cmd_ = 0.0;
   double omega_cmd_ = 0.0;
   UgvHealth health_;
+  OverrunGovernor governor_;
 };
 
 }  // namespace colag::ugv
