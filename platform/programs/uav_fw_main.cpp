@@ -5,18 +5,26 @@
 // --check-config validates the configuration and the camera calibration it names.
 // --camera-test runs the camera RPE device (capture thread, AprilTag detection, pose) and prints
 //   each UGV it sees twice a second: the bring-up step for a new camera, calibration or tag set.
-// A full mission run also needs the UAV's flight-controller, odometry and LiDAR drivers
-// (hal::FlightController, hal::OdometrySource, hal::Lidar); this repository implements them
-// only in the simulator so far, and uav_fw says so instead of flying without them.
+// With `robot.hal: sim`, uav_fw runs the mission: the UavSupervisorTask with Cyclone DDS to the
+// UGVs and colag_world's simulated flight controller, odometry, LiDAR and camera over the sim
+// link (SITL, scripts/sitl.sh). On a board a mission also needs the UAV's flight-controller,
+// odometry and LiDAR drivers (hal::FlightController, hal::OdometrySource, hal::Lidar); this
+// repository has no such drivers yet, and uav_fw says so instead of flying without them.
+//   uav_fw --config uav.yaml      (robot.hal: sim; runs until SIGINT/SIGTERM)
 //
 // Exit codes: 0 success, 1 a device failed or is missing, 2 a usage or configuration error.
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <string>
 
 #include "colag/board/board_runtime.hpp"
 #include "colag/board/uav_board_config.hpp"
+#include "colag/platform/dds/dds_transport.hpp"
+#include "colag/platform/worker_pool.hpp"
+#include "colag/sim/sim_devices.hpp"
+#include "colag/uav/uav_supervisor_task.hpp"
 
 using namespace colag;
 
@@ -43,6 +51,66 @@ class CameraReport final : public platform::Task {
   std::array<hal::RelativePoseDetection, limits::kMaxRpeDetectionsPerFrame> seen_{};
 };
 
+// The mission on the simulated UAV (SITL): the same task table as on a board.
+int run_sim_mission(const board::UavBoardConfig& cfg, double seconds_to_run) {
+  platform::RealtimeExecutor exec;
+  const std::uint32_t sim_domain = sim::sim_domain_for(cfg.common.dds_domain);
+  static sim::SimLink link;  // static: the devices and the task refer to it until exit
+  if (const Status s = link.init(sim_domain, sim::SimLink::Side::kUav); !s) {
+    std::fprintf(stderr, "uav_fw: sim link on DDS domain %u: %s (%s)\n", sim_domain, s.message(),
+                 dds_strretcode(link.last_error()));
+    return 1;
+  }
+  static sim::SimUavDevices devices(link);
+  platform::dds::DdsTransport dds;
+  platform::dds::DdsConfig dds_cfg;
+  dds_cfg.domain_id = cfg.common.dds_domain;
+  dds_cfg.partition = cfg.common.dds_partition.c_str();
+  dds_cfg.security = cfg.common.dds_security;
+  dds_cfg.publishes = {};  // the UAV announces only what it sends
+  for (msg::Topic t : {msg::Topic::kUavOdometry, msg::Topic::kRelativePose, msg::Topic::kMapPatch,
+                       msg::Topic::kSupportPlan})
+    dds_cfg.publishes[static_cast<std::size_t>(t)] = true;
+  if (const Status s = dds.init(dds_cfg); !s) {
+    std::fprintf(stderr, "uav_fw: DDS: %s (%s)\n", s.message(), dds_strretcode(dds.last_error()));
+    return 1;
+  }
+  uav::UavSupervisorConfig uc;
+  uc.id = cfg.id;
+  platform::WorkerPool pool(1);  // mapping may use a second core
+  // The mapper's grids (tens of MB): static storage, like ugv_fw's task.
+  static std::optional<uav::UavSupervisorTask> task_storage;
+  uav::UavSupervisorTask& task =
+      task_storage.emplace(uc, dds, devices, devices, devices, devices, &pool);
+  platform::TransportPump pump(dds);
+  using std::chrono::milliseconds;
+  Status st = exec.add({&pump, milliseconds(10), milliseconds(2)});
+  if (st) st = exec.add({&task.control_loop(), milliseconds(20), milliseconds(5)});
+  if (st) st = exec.add({&task.mapping_loop(), milliseconds(100), milliseconds(50)});
+  if (st) st = exec.add({&task.sharing_loop(), milliseconds(50), milliseconds(10)});
+  if (st) st = exec.add({&task.scheduling_loop(), milliseconds(100), milliseconds(20)});
+  board::print_realtime_setup("uav_fw", exec.apply(cfg.common.realtime));
+  if (st) st = exec.init();
+  if (!st) {
+    std::fprintf(stderr, "uav_fw: start-up: %s\n", st.message());
+    return 1;
+  }
+  std::printf("uav_fw: mission on the simulated UAV (sim link on DDS domain %u)\n", sim_domain);
+  std::fflush(stdout);
+  board::stop_on_signals(exec);
+  const TimePoint end =
+      seconds_to_run > 0.0 ? exec.clock().now() + seconds(seconds_to_run) : TimePoint::max();
+  exec.run_until(end);
+  std::printf("uav_fw: stopping\n");
+  board::print_task_stats("uav_fw", exec.schedule());
+  std::printf("uav_fw: map patches %llu (%llu bytes), schedules %llu, malformed sim samples %llu\n",
+              static_cast<unsigned long long>(task.sharer().counters().patches),
+              static_cast<unsigned long long>(task.sharer().counters().bytes),
+              static_cast<unsigned long long>(task.health().schedules),
+              static_cast<unsigned long long>(devices.malformed()));
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -53,6 +121,12 @@ int main(int argc, char** argv) {
   if (!board::load_uav_config(args.config_path, cfg, error)) {
     std::fprintf(stderr, "uav_fw: %s\n", error.c_str());
     return 2;
+  }
+  if (cfg.sim_hal) {
+    std::printf("uav_fw: UAV %d, simulated HAL (SITL), DDS domain %u\n", cfg.id,
+                cfg.common.dds_domain);
+    if (args.check_only) return 0;
+    return run_sim_mission(cfg, args.seconds);
   }
   const auto& cam = cfg.rpe.camera;
   std::printf("uav_fw: UAV %d, camera %s %dx%d f=%.1f px (%s), %zu tags of %.3f m, DDS domain %u\n",

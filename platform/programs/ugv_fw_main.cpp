@@ -1,5 +1,7 @@
 // ugv_fw: the UGV board program. SocketCAN wheel encoders and motor controller, Cyclone DDS to
-// the UAV and the other UGVs, the UgvNavTask under the real-time executor.
+// the UAV and the other UGVs, the UgvNavTask under the real-time executor. With
+// `can.interface: sim` the CAN bus is colag_world's simulated one over DDS (SITL); everything
+// above the bus is the same.
 //
 //   ugv_fw --config ugv.yaml [--check-config] [--duration SECONDS]
 //
@@ -14,6 +16,7 @@
 #include "colag/board/ugv_board_config.hpp"
 #include "colag/linux/socketcan_bus.hpp"
 #include "colag/platform/dds/dds_transport.hpp"
+#include "colag/sim/sim_devices.hpp"
 #include "colag/ugv/ugv_nav_task.hpp"
 
 using namespace colag;
@@ -34,17 +37,34 @@ int main(int argc, char** argv) {
   if (args.check_only) return 0;
 
   platform::RealtimeExecutor exec;
-  linux_hal::SocketCanConfig can_cfg;
-  can_cfg.interface = cfg.can_interface;
-  const std::uint32_t mask = cfg.protocol.extended_ids ? 0x1FFFFFFFu : 0x7FFu;
-  (void)can_cfg.filters.push_back({cfg.protocol.counts_id, mask, cfg.protocol.extended_ids});
-  (void)can_cfg.filters.push_back({cfg.protocol.speeds_id, mask, cfg.protocol.extended_ids});
-  linux_hal::SocketCanBus bus(can_cfg, exec.clock());
-  if (const Status s = bus.open(); !s) {
-    std::fprintf(stderr, "ugv_fw: %s: %s (%s)\n", cfg.can_interface.c_str(), s.message(),
-                 std::strerror(bus.driver_stats().last_errno));
-    return 1;
+  std::optional<linux_hal::SocketCanBus> socketcan;
+  std::optional<sim::SimLink> sim_link;
+  std::optional<sim::SimCanBus> sim_bus;
+  hal::CanBus* bus_ptr = nullptr;
+  if (cfg.can_interface == "sim") {
+    const std::uint32_t domain = sim::sim_domain_for(cfg.common.dds_domain);
+    if (const Status s = sim_link.emplace().init(domain, sim::SimLink::Side::kUgv, cfg.nav.id);
+        !s) {
+      std::fprintf(stderr, "ugv_fw: sim CAN on DDS domain %u: %s (%s)\n", domain, s.message(),
+                   dds_strretcode(sim_link->last_error()));
+      return 1;
+    }
+    bus_ptr = &sim_bus.emplace(*sim_link, cfg.nav.id);
+  } else {
+    linux_hal::SocketCanConfig can_cfg;
+    can_cfg.interface = cfg.can_interface;
+    const std::uint32_t mask = cfg.protocol.extended_ids ? 0x1FFFFFFFu : 0x7FFu;
+    (void)can_cfg.filters.push_back({cfg.protocol.counts_id, mask, cfg.protocol.extended_ids});
+    (void)can_cfg.filters.push_back({cfg.protocol.speeds_id, mask, cfg.protocol.extended_ids});
+    linux_hal::SocketCanBus& b = socketcan.emplace(can_cfg, exec.clock());
+    if (const Status s = b.open(); !s) {
+      std::fprintf(stderr, "ugv_fw: %s: %s (%s)\n", cfg.can_interface.c_str(), s.message(),
+                   std::strerror(b.driver_stats().last_errno));
+      return 1;
+    }
+    bus_ptr = &b;
   }
+  hal::CanBus& bus = *bus_ptr;
   hal::can::CanWheelOdometry odometry(bus, cfg.protocol, cfg.wheels);
   hal::can::CanDrive drive(bus, cfg.protocol, cfg.wheels);
 

@@ -14,10 +14,14 @@ bool read_uav_config(const YAML::Node& root, const std::string& path, UavBoardCo
   UavBoardConfig c;
   r.only(doc, "", {"robot", "dds", "realtime", "camera"});
   const YAML::Node robot = child(doc, "robot");
-  r.only(robot, "robot", {"id"});
+  r.only(robot, "robot", {"id", "hal"});
   int id = 0;
   r.get(robot, "robot", "id", id, 0, 255);
   c.id = static_cast<RobotId>(id);
+  std::string hal = "board";
+  r.get(robot, "robot", "hal", hal);
+  if (hal != "board" && hal != "sim") r.fail("robot.hal", "expected board or sim");
+  c.sim_hal = hal == "sim";
   read_common(r, doc, c.common);
 
   const YAML::Node cam = child(doc, "camera");
@@ -56,7 +60,7 @@ bool read_uav_config(const YAML::Node& root, const std::string& path, UavBoardCo
       int tag = -1, ugv = -1;
       double height = 0.3;
       r.get(tags[i], p, "tag", tag, 0, 586);  // tag36h11 has 587 codes
-      r.get(tags[i], p, "ugv", ugv, 1, static_cast<int>(limits::kMaxUgvs));
+      r.get(tags[i], p, "ugv", ugv, 0, static_cast<int>(limits::kMaxUgvs) - 1);
       r.get(tags[i], p, "height_m", height, 0.0, 3.0);
       if (r.ok() && (tag < 0 || ugv < 0)) r.fail(p, "needs both tag and ugv");
       // A tag lying flat on top of the UGV, its x along the UGV's x, facing up.
@@ -66,9 +70,10 @@ bool read_uav_config(const YAML::Node& root, const std::string& path, UavBoardCo
         r.fail("camera.tags", "too many tags");
     }
   }
-  if (r.ok() && c.calibration_file.empty())
+  // The simulated camera needs no calibration.
+  if (r.ok() && c.calibration_file.empty() && !c.sim_hal)
     r.fail("camera.calibration", "required (an OpenCV calibration YAML)");
-  if (r.ok()) {
+  if (r.ok() && !c.calibration_file.empty()) {
     const std::string file = relative_to(path, c.calibration_file);
     std::string cal_error;
     if (!linux_hal::load_intrinsics(file, c.rpe.camera, cal_error))

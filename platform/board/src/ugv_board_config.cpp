@@ -20,7 +20,7 @@ bool read_ugv_config(const YAML::Node& root, const std::string& path, UgvBoardCo
   const YAML::Node robot = child(doc, "robot");
   r.only(robot, "robot", {"id", "goal", "start_guess", "radius_m"});
   int id = 1;
-  r.get(robot, "robot", "id", id, 1, static_cast<int>(limits::kMaxUgvs));
+  r.get(robot, "robot", "id", id, 0, static_cast<int>(limits::kMaxUgvs) - 1);
   c.nav.id = static_cast<RobotId>(id);
   double goal[2];
   if (r.vector(robot, "robot", "goal", goal, 2)) c.nav.goal = Vec2(goal[0], goal[1]);

@@ -181,6 +181,8 @@ class SupportLog final : public platform::SampleSink {
   MissionTrace* trace = nullptr;
 };
 
+}  // namespace
+
 bool build_world(const MissionConfig& cfg, mock::BoxWorld& world, std::string& error) {
   if (cfg.scenario == "sparse" || cfg.scenario == "dense") {
     mock::MapGenConfig gen;
@@ -204,7 +206,15 @@ bool build_world(const MissionConfig& cfg, mock::BoxWorld& world, std::string& e
   return false;
 }
 
-}  // namespace
+Pose2 ugv_start(int i) {
+  return {Vec2(lane_x(i), kStartY), -M_PI / 2};
+}
+Vec2 ugv_goal(int i) {
+  return Vec2(lane_x(i), kGoalY);
+}
+Vec3 uav_start() {
+  return kUavStart;
+}
 
 Result<MissionOutcome> run_mission(const MissionConfig& cfg, MissionTrace* trace,
                                    std::string* error_out) {
@@ -252,7 +262,7 @@ Result<MissionOutcome> run_mission(const MissionConfig& cfg, MissionTrace* trace
   std::unique_ptr<uav::UavSupervisorTask> uav;
   std::unique_ptr<ReferenceFrameTask> reference;
   if (!cfg.self_perception) {
-    world->add_uav(kUavStart);
+    world->add_uav(uav_start());
     uav::UavSupervisorConfig uc;
     if (cfg.ablation == Ablation::kNoScheduling)
       uc.scheduler.mode = uav::ScheduleMode::kNoScheduling;
@@ -274,18 +284,17 @@ Result<MissionOutcome> run_mission(const MissionConfig& cfg, MissionTrace* trace
   };
   std::vector<UgvStack> ugvs(static_cast<std::size_t>(cfg.ugvs));
   for (int i = 0; i < cfg.ugvs; ++i) {
-    const Pose2 start{Vec2(lane_x(i), kStartY), -M_PI / 2};
-    world->add_ugv(start);
+    world->add_ugv(ugv_start(i));
   }
   if (cfg.self_perception) world->enable_ugv_lidars();
   for (int i = 0; i < cfg.ugvs; ++i) {
     UgvStack& s = ugvs[static_cast<std::size_t>(i)];
-    s.goal = Vec2(lane_x(i), kGoalY);
+    s.goal = ugv_goal(i);
     ugv::UgvNavConfig nc;
     nc.id = static_cast<RobotId>(i);
     nc.goal = s.goal;
     nc.has_start_guess = true;
-    nc.start_guess = {Vec2(lane_x(i), kStartY), -M_PI / 2};
+    nc.start_guess = ugv_start(i);
     nc.use_rpe_updates = cfg.ablation != Ablation::kNoRpe;
     nc.predictor.use_uncertainty = cfg.ablation != Ablation::kNoUncertainty;
     nc.predictor.horizon_m = cfg.predict_horizon_m;

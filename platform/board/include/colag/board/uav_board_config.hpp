@@ -10,6 +10,8 @@ namespace colag::board {
 struct UavBoardConfig {
   CommonBoardConfig common;
   RobotId id = 0;
+  // robot.hal: "board" (the UAV's own drivers) or "sim" (colag_world over the sim link: SITL).
+  bool sim_hal = false;
   linux_hal::TagPoseConfig rpe;
   linux_hal::CameraSource camera;
   std::string calibration_file;  // OpenCV calibration YAML, required

@@ -129,6 +129,14 @@ struct MissionTrace {
   std::vector<Vec2> unknown_cells;  // ground cells the UAV never saw (0.1 m), at the end
 };
 
+// The paper's layout (Sec. V): UGV i starts at (x_i, 16) heading -y and drives to (x_i, -16),
+// x = 0, -2, 2, -4, 4, ...; the UAV starts at (0, 15, 1). Shared with colag_world (SITL).
+Pose2 ugv_start(int i);
+Vec2 ugv_goal(int i);
+Vec3 uav_start();
+// The scenario's obstacles: generated from the seed (sparse / dense) or loaded (file).
+bool build_world(const MissionConfig& config, mock::BoxWorld& world, std::string& error);
+
 // Runs one mission. Fails (with a message) only on a bad configuration or map file.
 Result<MissionOutcome> run_mission(const MissionConfig& config, MissionTrace* trace = nullptr,
                                    std::string* error = nullptr);

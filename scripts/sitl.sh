@@ -1,0 +1,181 @@
+#!/usr/bin/env bash
+# Software in the loop: the simulated world (colag_world) and the robots' unchanged firmware as
+# separate processes — uav_fw (robot.hal: sim) and one ugv_fw per UGV (can.interface: sim) —
+# talking only over Cyclone DDS.
+#   scripts/sitl.sh [--ugvs N] [--scenario sparse|dense] [--seed S] [--max-time S]
+#                   [--json OUT] [--netns] [--loss PCT] [--domain D] [--build DIR]
+# Waits for the mission to end, writes the metrics JSON (colag_sim's schema; default
+# build/sitl/metrics.json), stops every process by PID, prints a summary, and exits 0 when
+# every UGV reached its goal with no collision (1 otherwise, 2 on a usage or set-up error).
+#   --netns     every robot in its own network namespace (the world in a hub namespace with a
+#               bridge), joined by veth pairs; all created here and removed on exit. Needs root.
+#               Prints each robot's DDS traffic (bytes/s in and out, robot-to-robot domain only).
+#   --loss PCT  (with --netns) every robot namespace drops PCT % of the incoming robot-to-robot
+#               DDS packets (nftables; the simulator's own link is not degraded).
+# Logs and configurations: build/sitl/run-<pid>/.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+ugvs=3 scenario=dense seed=1 max_time=400 json=build/sitl/metrics.json netns=0 loss=0
+build=build/host domain=$((10 + ($$ % 100) * 2))
+usage() { sed -n '5,16p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
+while (($#)); do
+  case "$1" in
+    --ugvs) ugvs=$2; shift 2 ;;
+    --scenario) scenario=$2; shift 2 ;;
+    --seed) seed=$2; shift 2 ;;
+    --max-time) max_time=$2; shift 2 ;;
+    --json) json=$2; shift 2 ;;
+    --netns) netns=1; shift ;;
+    --loss) loss=$2; shift 2 ;;
+    --domain) domain=$2; shift 2 ;;
+    --build) build=$2; shift 2 ;;
+    *) usage ;;
+  esac
+done
+[[ $ugvs =~ ^[0-9]+$ ]] && ((ugvs >= 1 && ugvs <= 16)) || { echo "sitl: --ugvs must be 1..16" >&2; exit 2; }
+[[ $loss =~ ^[0-9]+$ ]] && ((loss <= 100)) || { echo "sitl: --loss must be 0..100" >&2; exit 2; }
+((loss == 0 || netns)) || { echo "sitl: --loss needs --netns (loss is injected per namespace)" >&2; exit 2; }
+for p in colag_world uav_fw ugv_fw; do
+  [ -x "$build/bin/$p" ] || { echo "sitl: $build/bin/$p missing: build the host preset first" >&2; exit 2; }
+done
+if ((netns)); then
+  [ "$(id -u)" -eq 0 ] || { echo "sitl: --netns needs root (network namespaces)" >&2; exit 2; }
+  command -v ip >/dev/null && command -v nft >/dev/null ||
+    { echo "sitl: --netns needs ip (iproute2) and nft (nftables)" >&2; exit 2; }
+fi
+
+run=build/sitl/run-$$
+mkdir -p "$run" "$(dirname "$json")"
+run=$(cd "$run" && pwd)
+rm -f "$json"
+
+# Cyclone: participant indices give each domain a fixed port range (7400 + 250 * domain ...),
+# which the loss rules rely on; on loopback, stay on lo.
+if ((netns)); then
+  export CYCLONEDDS_URI='<Discovery><ParticipantIndex>auto</ParticipantIndex><MaxAutoParticipantIndex>20</MaxAutoParticipantIndex></Discovery>'
+else
+  export CYCLONEDDS_URI='<General><Interfaces><NetworkInterface name="lo"/></Interfaces></General>'
+fi
+
+lane_x() { local i=$1; echo $(( (i % 2 == 1 ? -2 : 2) * ((i + 1) / 2) )); }
+cat >"$run/uav.yaml" <<YAML
+robot: {id: 0, hal: sim}
+dds: {domain: $domain}
+realtime: {fifo_priority: 0, lock_memory: false}
+YAML
+for ((i = 0; i < ugvs; ++i)); do
+  x=$(lane_x "$i")
+  cat >"$run/ugv$i.yaml" <<YAML
+robot: {id: $i, goal: [$x, -16.0], start_guess: [$x, 16.0, -1.5707963]}
+dds: {domain: $domain}
+realtime: {fifo_priority: 0, lock_memory: false}
+can: {interface: sim}
+YAML
+done
+
+pids=() namespaces=()
+ns_of=()  # namespace of each robot (empty: none)
+cleanup() {
+  for pid in "${pids[@]}"; do kill -TERM "$pid" 2>/dev/null || true; done
+  for _ in $(seq 50); do
+    alive=0
+    for pid in "${pids[@]}"; do kill -0 "$pid" 2>/dev/null && alive=1; done
+    ((alive)) || break
+    sleep 0.1
+  done
+  for pid in "${pids[@]}"; do kill -KILL "$pid" 2>/dev/null || true; done
+  for ns in "${namespaces[@]}"; do ip netns delete "$ns" 2>/dev/null || true; done
+}
+trap cleanup EXIT
+trap 'exit 130' INT TERM
+
+robots=(uav)
+for ((i = 0; i < ugvs; ++i)); do robots+=("ugv$i"); done
+hub=""
+if ((netns)); then
+  hub=colag-$$-hub
+  ip netns add "$hub"; namespaces+=("$hub")
+  ip -n "$hub" link set lo up
+  ip -n "$hub" link add br0 type bridge
+  ip -n "$hub" addr add 10.77.0.1/24 dev br0
+  ip -n "$hub" link set br0 up
+  k=0
+  port_lo=$((7400 + 250 * domain)) port_hi=$((7400 + 250 * domain + 249))
+  for r in "${robots[@]}"; do
+    ns=colag-$$-$r
+    ip netns add "$ns"; namespaces+=("$ns")
+    ip -n "$ns" link set lo up
+    ip -n "$hub" link add "h$k" type veth peer name eth0 netns "$ns"
+    ip -n "$hub" link set "h$k" master br0 up
+    ip -n "$ns" addr add "10.77.0.$((10 + k))/24" dev eth0
+    ip -n "$ns" link set eth0 up
+    # Counters for the robot-to-robot domain (both directions), and the loss, on ingress.
+    ip netns exec "$ns" nft -f - <<NFT
+table inet colag {
+  counter dds_in {}
+  counter dds_out {}
+  chain pre {
+    type filter hook prerouting priority -300;
+    iifname "eth0" udp dport $port_lo-$port_hi counter name dds_in
+    iifname "eth0" udp dport $port_lo-$port_hi numgen random mod 100 < $loss drop
+  }
+  chain out {
+    type filter hook output priority 0;
+    oifname "eth0" udp dport $port_lo-$port_hi counter name dds_out
+  }
+}
+NFT
+    ns_of+=("$ns")
+    k=$((k + 1))
+  done
+else
+  for r in "${robots[@]}"; do ns_of+=(""); done
+fi
+in_ns() {  # namespace command...
+  if [ -n "$1" ]; then local ns=$1; shift; ip netns exec "$ns" "$@"; else shift; "$@"; fi
+}
+
+echo "sitl: $scenario, $ugvs UGVs, seed $seed, DDS domain $domain (sim link $((domain + 1)))$( ((netns)) && echo ", one network namespace per robot")$( ((loss)) && echo ", $loss % loss")"
+echo "sitl: logs and configs in $run"
+in_ns "$hub" stdbuf -oL "$build/bin/colag_world" --scenario "$scenario" --ugvs "$ugvs" --seed "$seed" \
+  --domain "$domain" --max-time "$max_time" --json "$json" >"$run/world.log" 2>&1 &
+world=$!
+pids+=("$world")
+in_ns "${ns_of[0]}" stdbuf -oL "$build/bin/uav_fw" --config "$run/uav.yaml" >"$run/uav.log" 2>&1 &
+pids+=($!)
+for ((i = 0; i < ugvs; ++i)); do
+  in_ns "${ns_of[$((i + 1))]}" stdbuf -oL "$build/bin/ugv_fw" --config "$run/ugv$i.yaml" >"$run/ugv$i.log" 2>&1 &
+  pids+=($!)
+done
+start=$(date +%s)
+tail -f "$run/world.log" --pid "$world" 2>/dev/null | sed -u 's/^/  /' &
+tailer=$!
+set +e
+wait "$world"
+world_rc=$?
+set -e
+kill "$tailer" 2>/dev/null || true
+wall=$(($(date +%s) - start))
+
+if ((netns)); then
+  echo "sitl: robot-to-robot DDS traffic per robot over $wall s (domain $domain only; the sim link excluded):"
+  for ((k = 0; k < ${#robots[@]}; ++k)); do
+    read -r in_b out_b < <(ip netns exec "${ns_of[$k]}" nft list counters table inet colag |
+      awk '/counter dds_in/ {w="in"} /counter dds_out/ {w="out"} /bytes/ {for (i=1;i<=NF;i++) if ($i=="bytes") b[w]=$(i+1)} END {print b["in"]+0, b["out"]+0}')
+    printf '  %-5s in %8d B/s   out %8d B/s\n' "${robots[$k]}" $((in_b / (wall > 0 ? wall : 1))) $((out_b / (wall > 0 ? wall : 1)))
+  done
+fi
+cleanup
+pids=() namespaces=()
+if ((world_rc != 0)) || [ ! -s "$json" ]; then
+  echo "sitl: colag_world failed (exit $world_rc); see $run/*.log" >&2
+  exit 1
+fi
+echo "sitl: metrics in $json"
+if grep -q '"all_reached": true' "$json" && grep -q '"collisions": 0' "$json"; then
+  echo "sitl: PASS: every UGV reached its goal, no collision"
+else
+  echo "sitl: FAIL: not every UGV reached its goal, or a collision" >&2
+  exit 1
+fi
