@@ -6,7 +6,8 @@
 #                   [--json OUT] [--netns] [--loss PCT] [--domain D] [--build DIR]
 # Waits for the mission to end, writes the metrics JSON (colag_sim's schema; default
 # build/sitl/metrics.json), stops every process by PID, prints a summary, and exits 0 when
-# every UGV reached its goal with no collision (1 otherwise, 2 on a usage or set-up error).
+# every UGV reached its goal with no collision (1 otherwise, 2 on a usage or set-up error, 77
+# when --netns cannot work on this machine: not root, no iproute2/nftables, no namespaces).
 #   --netns     every robot in its own network namespace (the world in a hub namespace with a
 #               bridge), joined by veth pairs; all created here and removed on exit. Needs root.
 #               Prints each robot's DDS traffic (bytes/s in and out, robot-to-robot domain only).
@@ -40,9 +41,12 @@ for p in colag_world uav_fw ugv_fw; do
   [ -x "$build/bin/$p" ] || { echo "sitl: $build/bin/$p missing: build the host preset first" >&2; exit 2; }
 done
 if ((netns)); then
-  [ "$(id -u)" -eq 0 ] || { echo "sitl: --netns needs root (network namespaces)" >&2; exit 2; }
+  [ "$(id -u)" -eq 0 ] || { echo "sitl: --netns needs root (network namespaces)" >&2; exit 77; }
   command -v ip >/dev/null && command -v nft >/dev/null ||
-    { echo "sitl: --netns needs ip (iproute2) and nft (nftables)" >&2; exit 2; }
+    { echo "sitl: --netns needs ip (iproute2) and nft (nftables)" >&2; exit 77; }
+  ip netns add "colag-probe-$$" 2>/dev/null ||
+    { echo "sitl: cannot create network namespaces here (a container without CAP_SYS_ADMIN?)" >&2; exit 77; }
+  ip netns delete "colag-probe-$$"
 fi
 
 run=build/sitl/run-$$
