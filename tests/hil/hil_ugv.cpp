@@ -1,7 +1,7 @@
 // The UGV board's CAN stack in the loop (scripts/hil): the real SocketCAN driver, wheel
 // odometry and drive under the real-time executor at 50 Hz, against colag_motor_emulator on
 // the same interface. It drives a profile (straight, turn, stop), integrates the encoder
-// odometry, and keeps the board's watchdog: encoder frames stale for > 100 ms => command zero
+// odometry, and keeps the board's watchdog: encoder frames stale for > 60 ms => command zero
 // speed and report the fault. Exits 0 only if everything checked holds.
 //
 //   colag_hil_ugv run [--interface vcan0] [--seconds 6]
@@ -51,7 +51,7 @@ class CanStackTask final : public platform::Task {
       ++samples_;
     }
     const TimePoint heard = odometry_.last_sample_time();
-    const bool stale = heard != TimePoint{} && now - heard > std::chrono::milliseconds(100);
+    const bool stale = heard != TimePoint{} && now - heard > std::chrono::milliseconds(60);
     if (stale && !tripped_) {
       tripped_ = true;
       trip_delay_ = now - heard;
@@ -149,7 +149,7 @@ int run(const std::string& interface, double run_s) {
   expect(std::abs(task.yaw_ - ref.yaw_rad) < 0.05, "odometry heading within 0.05 rad");
   expect(c.bad_checksum == 0 && c.wrong_dlc == 0 && c.unknown_id == 0, "no malformed frames");
   expect(task.samples_ > 150, "encoder samples at ~50 Hz");
-  expect(task.tripped_ && trip_ms <= 150.0, "watchdog trips within 150 ms of the last frame");
+  expect(task.tripped_ && trip_ms <= 100.0, "watchdog trips within 100 ms of the last frame");
   return ok ? 0 : 1;
 }
 

@@ -100,7 +100,7 @@ TEST_F(BoardConfig, EmptyFileMeansDefaults) {
   ASSERT_TRUE(load_ugv_config(write("empty.yaml", ""), c, error)) << error;
   EXPECT_EQ(c.can_interface, "can0");
   EXPECT_EQ(c.control_period, std::chrono::milliseconds(20));
-  EXPECT_EQ(c.nav.odometry_timeout, std::chrono::milliseconds(100));
+  EXPECT_EQ(c.nav.odometry_timeout, std::chrono::milliseconds(60));
 }
 
 TEST_F(BoardConfig, ErrorsNameTheKeyAndTheProblem) {

@@ -37,7 +37,9 @@ struct UgvNavConfig {
   Duration replan_period = std::chrono::seconds(1);
   Duration no_path_retry = std::chrono::seconds(1);
   double replan_cross_track_m = 0.5;  // off the path by more than this => replan
-  Duration odometry_timeout = std::chrono::milliseconds(100);
+  // Encoder frames come at 50 Hz: three missing ones mean a fault. With the 20 ms control loop
+  // the robot is commanded to zero within 80 ms (+ scheduling jitter) of the last frame.
+  Duration odometry_timeout = std::chrono::milliseconds(60);
   Duration odometry_startup_grace = std::chrono::seconds(1);
   Duration rpe_match_tolerance = std::chrono::milliseconds(100);
   Duration max_message_age = std::chrono::seconds(2);         // older RPE / patches are ignored
