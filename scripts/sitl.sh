@@ -4,6 +4,7 @@
 # talking only over Cyclone DDS.
 #   scripts/sitl.sh [--ugvs N] [--scenario sparse|dense] [--seed S] [--max-time S]
 #                   [--json OUT] [--netns] [--loss PCT] [--domain D] [--build DIR]
+#                   [--time-scale X]
 # Waits for the mission to end, writes the metrics JSON (colag_sim's schema; default
 # build/sitl/metrics.json), stops every process by PID, prints a summary, and exits 0 when
 # every UGV reached its goal with no collision (1 otherwise, 2 on a usage or set-up error, 77
@@ -13,13 +14,15 @@
 #               Prints each robot's DDS traffic (bytes/s in and out, robot-to-robot domain only).
 #   --loss PCT  (with --netns) every robot namespace drops PCT % of the incoming robot-to-robot
 #               DDS packets (nftables; the simulator's own link is not degraded).
+#   --time-scale X  X simulated seconds per wall-clock second for every process (default 1:
+#               real time); they all scale CLOCK_MONOTONIC alike, so they agree on the time.
 # Logs and configurations: build/sitl/run-<pid>/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-ugvs=3 scenario=dense seed=1 max_time=400 json=build/sitl/metrics.json netns=0 loss=0
+ugvs=3 scenario=dense seed=1 max_time=400 json=build/sitl/metrics.json netns=0 loss=0 scale=1
 build=build/host domain=$((10 + ($$ % 100) * 2))
-usage() { sed -n '5,16p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
+usage() { sed -n '2,21p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
 while (($#)); do
   case "$1" in
     --ugvs) ugvs=$2; shift 2 ;;
@@ -31,6 +34,7 @@ while (($#)); do
     --loss) loss=$2; shift 2 ;;
     --domain) domain=$2; shift 2 ;;
     --build) build=$2; shift 2 ;;
+    --time-scale) scale=$2; shift 2 ;;
     *) usage ;;
   esac
 done
@@ -140,16 +144,16 @@ in_ns() {  # namespace command...
   if [ -n "$1" ]; then local ns=$1; shift; ip netns exec "$ns" "$@"; else shift; "$@"; fi
 }
 
-echo "sitl: $scenario, $ugvs UGVs, seed $seed, DDS domain $domain (sim link $((domain + 1)))$( ((netns)) && echo ", one network namespace per robot")$( ((loss)) && echo ", $loss % loss")"
+echo "sitl: $scenario, $ugvs UGVs, seed $seed, time x$scale, DDS domain $domain (sim link $((domain + 1)))$( ((netns)) && echo ", one network namespace per robot")$( ((loss)) && echo ", $loss % loss")"
 echo "sitl: logs and configs in $run"
 in_ns "$hub" stdbuf -oL "$build/bin/colag_world" --scenario "$scenario" --ugvs "$ugvs" --seed "$seed" \
-  --domain "$domain" --max-time "$max_time" --json "$json" >"$run/world.log" 2>&1 &
+  --domain "$domain" --max-time "$max_time" --json "$json" --time-scale "$scale" >"$run/world.log" 2>&1 &
 world=$!
 pids+=("$world")
-in_ns "${ns_of[0]}" stdbuf -oL "$build/bin/uav_fw" --config "$run/uav.yaml" >"$run/uav.log" 2>&1 &
+in_ns "${ns_of[0]}" stdbuf -oL "$build/bin/uav_fw" --config "$run/uav.yaml" --time-scale "$scale" >"$run/uav.log" 2>&1 &
 pids+=($!)
 for ((i = 0; i < ugvs; ++i)); do
-  in_ns "${ns_of[$((i + 1))]}" stdbuf -oL "$build/bin/ugv_fw" --config "$run/ugv$i.yaml" >"$run/ugv$i.log" 2>&1 &
+  in_ns "${ns_of[$((i + 1))]}" stdbuf -oL "$build/bin/ugv_fw" --config "$run/ugv$i.yaml" --time-scale "$scale" >"$run/ugv$i.log" 2>&1 &
   pids+=($!)
 done
 start=$(date +%s)

@@ -6,6 +6,7 @@
 // metrics, runs in real time, and writes the same metrics JSON as colag_sim.
 //
 //   colag_world --scenario sparse --ugvs 3 --seed 1 [--domain D] [--max-time S] [--json F]
+//               [--time-scale X]   (X simulated seconds per second; the robots get the same)
 //
 // The mission clock starts when every robot has been heard (their status, the UAV's odometry).
 // Exit codes: 0 the mission ran (see the JSON for how it went), 1 DDS failed, 2 usage,
@@ -185,6 +186,7 @@ int main(int argc, char** argv) {
   std::string json_path;
   std::uint32_t domain = 0;
   double start_timeout_s = 60.0;
+  double time_scale = 1.0;
   bool quiet = false;
   app.add_option("--scenario", cfg.scenario, "sparse | dense")
       ->check(CLI::IsMember({"sparse", "dense"}));
@@ -200,6 +202,9 @@ int main(int argc, char** argv) {
   app.add_option("--lidar-columns", cfg.lidar_columns, "LiDAR horizontal resolution")
       ->check(CLI::Range(60, static_cast<int>(limits::kMaxLidarColumns)));
   app.add_option("--json", json_path, "write the metrics (colag_sim's schema) here");
+  app.add_option("--time-scale", time_scale,
+                 "simulated seconds per second (the robots need the same --time-scale)")
+      ->check(CLI::Range(0.1, 20.0));
   app.add_flag("--quiet", quiet, "only errors");
   CLI11_PARSE(app, argc, argv);
   if (!cfg.map_file.empty()) cfg.scenario = "file";
@@ -210,7 +215,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "colag_world: %s\n", error.c_str());
     return 2;
   }
-  platform::RealtimeExecutor exec;
+  platform::RealtimeExecutor exec(time_scale);
   mock::SimWorldConfig wc;
   wc.seed = cfg.seed;
   wc.lidar.columns = cfg.lidar_columns;

@@ -52,8 +52,8 @@ class CameraReport final : public platform::Task {
 };
 
 // The mission on the simulated UAV (SITL): the same task table as on a board.
-int run_sim_mission(const board::UavBoardConfig& cfg, double seconds_to_run) {
-  platform::RealtimeExecutor exec;
+int run_sim_mission(const board::UavBoardConfig& cfg, double seconds_to_run, double time_scale) {
+  platform::RealtimeExecutor exec(time_scale);
   const std::uint32_t sim_domain = sim::sim_domain_for(cfg.common.dds_domain);
   static sim::SimLink link;  // static: the devices and the task refer to it until exit
   if (const Status s = link.init(sim_domain, sim::SimLink::Side::kUav); !s) {
@@ -126,7 +126,11 @@ int main(int argc, char** argv) {
     std::printf("uav_fw: UAV %d, simulated HAL (SITL), DDS domain %u\n", cfg.id,
                 cfg.common.dds_domain);
     if (args.check_only) return 0;
-    return run_sim_mission(cfg, args.seconds);
+    return run_sim_mission(cfg, args.seconds, args.time_scale);
+  }
+  if (args.time_scale != 1.0) {
+    std::fprintf(stderr, "uav_fw: --time-scale is for the simulated HAL (robot.hal: sim)\n");
+    return 2;
   }
   const auto& cam = cfg.rpe.camera;
   std::printf("uav_fw: UAV %d, camera %s %dx%d f=%.1f px (%s), %zu tags of %.3f m, DDS domain %u\n",

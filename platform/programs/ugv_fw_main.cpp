@@ -35,8 +35,13 @@ int main(int argc, char** argv) {
               cfg.protocol.counts_id, cfg.protocol.speeds_id, cfg.protocol.command_id,
               cfg.common.dds_domain);
   if (args.check_only) return 0;
+  if (args.time_scale != 1.0 && cfg.can_interface != "sim") {
+    std::fprintf(stderr,
+                 "ugv_fw: --time-scale is for the simulated CAN bus (can.interface: sim)\n");
+    return 2;
+  }
 
-  platform::RealtimeExecutor exec;
+  platform::RealtimeExecutor exec(args.time_scale);
   std::optional<linux_hal::SocketCanBus> socketcan;
   std::optional<sim::SimLink> sim_link;
   std::optional<sim::SimCanBus> sim_bus;

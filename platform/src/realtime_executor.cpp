@@ -15,8 +15,7 @@ Status errno_status(int err, const char* what) {
   return {Errc::kIoError, what};
 }
 
-void sleep_until(TimePoint t) {
-  const auto ns = t.time_since_epoch().count();
+void sleep_until(std::int64_t ns) {
   timespec ts{};
   ts.tv_sec = static_cast<time_t>(ns / 1'000'000'000);
   ts.tv_nsec = static_cast<long>(ns % 1'000'000'000);
@@ -48,7 +47,7 @@ std::uint64_t RealtimeExecutor::run_until(TimePoint end) {
     if (release > end) break;
     const TimePoint now = clock_.now();
     if (now < release) {
-      sleep_until(release);
+      sleep_until(clock_.monotonic_ns(release));
       continue;  // re-check the stop flag and the time (a signal may have woken us early)
     }
     // Every row released by now runs, in table order, with its scheduled release as `now`.

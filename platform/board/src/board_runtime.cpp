@@ -23,9 +23,16 @@ bool parse_program_args(int argc, char** argv, const char* program, const char* 
       out.check_only = true;
     } else if (std::strcmp(argv[i], seconds_flag) == 0 && i + 1 < argc) {
       out.seconds = std::atof(argv[++i]);
+    } else if (std::strcmp(argv[i], "--time-scale") == 0 && i + 1 < argc) {
+      out.time_scale = std::atof(argv[++i]);
+      if (!(out.time_scale >= 0.1 && out.time_scale <= 20.0)) {
+        std::fprintf(stderr, "%s: --time-scale must be in [0.1, 20]\n", program);
+        return false;
+      }
     } else {
-      std::fprintf(stderr, "usage: %s --config FILE.yaml [--check-config] [%s S]\n", program,
-                   seconds_flag);
+      std::fprintf(stderr,
+                   "usage: %s --config FILE.yaml [--check-config] [%s S] [--time-scale X (SITL)]\n",
+                   program, seconds_flag);
       return false;
     }
   }

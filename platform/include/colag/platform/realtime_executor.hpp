@@ -24,6 +24,8 @@ struct RealtimeSetup {
 
 class RealtimeExecutor {
  public:
+  // `time_scale` != 1 only for software-in-the-loop runs (see MonotonicClock).
+  explicit RealtimeExecutor(double time_scale = 1.0) : clock_(time_scale) {}
   Status add(const TaskEntry& entry) { return schedule_.add(entry); }
   RealtimeSetup apply(const RealtimeOptions& options);
   // Calls every task's init(); the first releases are at the time of this call (+ offsets).

@@ -11,7 +11,8 @@ namespace colag::board {
 struct ProgramArgs {
   std::string config_path;
   bool check_only = false;
-  double seconds = -1.0;  // the value of seconds_flag; -1 when not given
+  double seconds = -1.0;    // the value of seconds_flag; -1 when not given
+  double time_scale = 1.0;  // --time-scale: simulated HAL only (SITL)
 };
 // False (usage or the missing --config printed, exit code 2) on anything else.
 bool parse_program_args(int argc, char** argv, const char* program, const char* seconds_flag,
