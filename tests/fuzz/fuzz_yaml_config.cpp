@@ -15,7 +15,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     colag::board::UgvBoardConfig c;
     if (colag::board::parse_ugv_config(text, "fuzz.yaml", c, error)) {
       COLAG_FUZZ_CHECK(error.empty());
-      COLAG_FUZZ_CHECK(c.nav.id >= 1 && c.nav.id <= colag::limits::kMaxUgvs);
+      COLAG_FUZZ_CHECK(c.nav.id < colag::limits::kMaxUgvs);
       COLAG_FUZZ_CHECK(c.wheels.wheel_radius_m > 0.0 && c.wheels.track_width_m > 0.0);
       COLAG_FUZZ_CHECK(c.control_period.count() > 0 && c.planning_period.count() > 0);
       COLAG_FUZZ_CHECK(c.common.dds_domain <= 232);
