@@ -146,14 +146,14 @@ in_ns() {  # namespace command...
 
 echo "sitl: $scenario, $ugvs UGVs, seed $seed, time x$scale, DDS domain $domain (sim link $((domain + 1)))$( ((netns)) && echo ", one network namespace per robot")$( ((loss)) && echo ", $loss % loss")"
 echo "sitl: logs and configs in $run"
-in_ns "$hub" stdbuf -oL "$build/bin/colag_world" --scenario "$scenario" --ugvs "$ugvs" --seed "$seed" \
+in_ns "$hub" "$build/bin/colag_world" --scenario "$scenario" --ugvs "$ugvs" --seed "$seed" \
   --domain "$domain" --max-time "$max_time" --json "$json" --time-scale "$scale" >"$run/world.log" 2>&1 &
 world=$!
 pids+=("$world")
-in_ns "${ns_of[0]}" stdbuf -oL "$build/bin/uav_fw" --config "$run/uav.yaml" --time-scale "$scale" >"$run/uav.log" 2>&1 &
+in_ns "${ns_of[0]}" "$build/bin/uav_fw" --config "$run/uav.yaml" --time-scale "$scale" >"$run/uav.log" 2>&1 &
 pids+=($!)
 for ((i = 0; i < ugvs; ++i)); do
-  in_ns "${ns_of[$((i + 1))]}" stdbuf -oL "$build/bin/ugv_fw" --config "$run/ugv$i.yaml" --time-scale "$scale" >"$run/ugv$i.log" 2>&1 &
+  in_ns "${ns_of[$((i + 1))]}" "$build/bin/ugv_fw" --config "$run/ugv$i.yaml" --time-scale "$scale" >"$run/ugv$i.log" 2>&1 &
   pids+=($!)
 done
 start=$(date +%s)

@@ -181,6 +181,8 @@ class Monitor final : public platform::Task {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Line-buffered even into a pipe or journald: a log must not lose its tail on SIGTERM.
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
   CLI::App app{"colag_world: the simulated world for software-in-the-loop runs"};
   mission::MissionConfig cfg;
   std::string json_path;

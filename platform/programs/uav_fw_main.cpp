@@ -114,6 +114,8 @@ int run_sim_mission(const board::UavBoardConfig& cfg, double seconds_to_run, dou
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Line-buffered even into a pipe or journald: a log must not lose its tail on SIGTERM.
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
   board::ProgramArgs args;
   if (!board::parse_program_args(argc, argv, "uav_fw", "--camera-test", args)) return 2;
   board::UavBoardConfig cfg;

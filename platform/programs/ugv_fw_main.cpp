@@ -22,6 +22,8 @@
 using namespace colag;
 
 int main(int argc, char** argv) {
+  // Line-buffered even into a pipe or journald: a log must not lose its tail on SIGTERM.
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
   board::ProgramArgs args;
   if (!board::parse_program_args(argc, argv, "ugv_fw", "--duration", args)) return 2;
   board::UgvBoardConfig cfg;
