@@ -48,8 +48,17 @@ if ((netns)); then
   [ "$(id -u)" -eq 0 ] || { echo "sitl: --netns needs root (network namespaces)" >&2; exit 77; }
   command -v ip >/dev/null && command -v nft >/dev/null ||
     { echo "sitl: --netns needs ip (iproute2) and nft (nftables)" >&2; exit 77; }
-  ip netns add "colag-probe-$$" 2>/dev/null ||
-    { echo "sitl: cannot create network namespaces here (a container without CAP_SYS_ADMIN?)" >&2; exit 77; }
+  # `ip netns` bind-mounts under /run/netns and needs / to be a mount point: not so in a chroot,
+  # where it would fail half-way and leave a mount behind. Probe without it first.
+  mountpoint -q / ||
+    { echo "sitl: / is not a mount point here (a chroot?): ip netns cannot work" >&2; exit 77; }
+  unshare --net true 2>/dev/null ||
+    { echo "sitl: cannot create network namespaces here (no CAP_SYS_ADMIN?)" >&2; exit 77; }
+  if ! ip netns add "colag-probe-$$" 2>/dev/null || ! ip netns exec "colag-probe-$$" true 2>/dev/null; then
+    ip netns delete "colag-probe-$$" 2>/dev/null || true
+    echo "sitl: ip netns does not work here" >&2
+    exit 77
+  fi
   ip netns delete "colag-probe-$$"
 fi
 
