@@ -16,19 +16,13 @@ template <class T, std::size_t N>
 void copy(const T (&from)[N], T (&to)[N]) {
   std::copy(from, from + N, to);
 }
-std::int64_t to_ns(TimePoint t) {
-  return t.time_since_epoch().count();
-}
-TimePoint from_ns(std::int64_t ns) {
-  return TimePoint{Duration{ns}};
-}
 
 }  // namespace
 
 // --- UavOdometry --------------------------------------------------------------------------------
 void to_idl(const msg::UavOdometry& in, IdlSample<msg::UavOdometry>& out) {
   auto& s = out.sample;
-  s.stamp_ns = to_ns(in.stamp);
+  s.stamp_ns = to_nanoseconds(in.stamp);
   s.uav_id = in.uav_id;
   copy(in.position_m, s.position_m);
   copy(in.orientation_wxyz, s.orientation_wxyz);
@@ -36,7 +30,7 @@ void to_idl(const msg::UavOdometry& in, IdlSample<msg::UavOdometry>& out) {
   s.yaw_rate_radps = in.yaw_rate_radps;
 }
 Status from_idl(const colag_idl_UavOdometry& in, msg::UavOdometry& out) {
-  out.stamp = from_ns(in.stamp_ns);
+  out.stamp = time_at_nanoseconds(in.stamp_ns);
   out.uav_id = in.uav_id;
   copy(in.position_m, out.position_m);
   copy(in.orientation_wxyz, out.orientation_wxyz);
@@ -48,7 +42,7 @@ Status from_idl(const colag_idl_UavOdometry& in, msg::UavOdometry& out) {
 // --- RelativePose -------------------------------------------------------------------------------
 void to_idl(const msg::RelativePose& in, IdlSample<msg::RelativePose>& out) {
   auto& s = out.sample;
-  s.stamp_ns = to_ns(in.stamp);
+  s.stamp_ns = to_nanoseconds(in.stamp);
   s.uav_id = in.uav_id;
   s.ugv_id = in.ugv_id;
   copy(in.position_m, s.position_m);
@@ -56,7 +50,7 @@ void to_idl(const msg::RelativePose& in, IdlSample<msg::RelativePose>& out) {
   copy(in.covariance, s.covariance);
 }
 Status from_idl(const colag_idl_RelativePose& in, msg::RelativePose& out) {
-  out.stamp = from_ns(in.stamp_ns);
+  out.stamp = time_at_nanoseconds(in.stamp_ns);
   out.uav_id = in.uav_id;
   out.ugv_id = in.ugv_id;
   copy(in.position_m, out.position_m);
@@ -68,7 +62,7 @@ Status from_idl(const colag_idl_RelativePose& in, msg::RelativePose& out) {
 // --- MapPatch -----------------------------------------------------------------------------------
 void to_idl(const msg::MapPatch& in, IdlSample<msg::MapPatch>& out) {
   auto& s = out.sample;
-  s.stamp_ns = to_ns(in.stamp);
+  s.stamp_ns = to_nanoseconds(in.stamp);
   s.uav_id = in.uav_id;
   s.ugv_id = in.ugv_id;
   s.seq = in.seq;
@@ -90,7 +84,7 @@ Status from_idl(const colag_idl_MapPatch& in, msg::MapPatch& out) {
   if (in.encoding > static_cast<std::uint8_t>(msg::MapPatchEncoding::kRowDelta)) {
     return {Errc::kInvalidArgument, "unknown map patch encoding"};
   }
-  out.stamp = from_ns(in.stamp_ns);
+  out.stamp = time_at_nanoseconds(in.stamp_ns);
   out.uav_id = in.uav_id;
   out.ugv_id = in.ugv_id;
   out.seq = in.seq;
@@ -109,7 +103,7 @@ Status from_idl(const colag_idl_MapPatch& in, msg::MapPatch& out) {
 // --- CollisionInfo ------------------------------------------------------------------------------
 void to_idl(const msg::CollisionInfo& in, IdlSample<msg::CollisionInfo>& out) {
   auto& s = out.sample;
-  s.stamp_ns = to_ns(in.stamp);
+  s.stamp_ns = to_nanoseconds(in.stamp);
   s.ugv_id = in.ugv_id;
   s.seq = in.seq;
   s.cancel = in.cancel;
@@ -118,7 +112,7 @@ void to_idl(const msg::CollisionInfo& in, IdlSample<msg::CollisionInfo>& out) {
   s.time_to_collision_s = in.time_to_collision_s;
 }
 Status from_idl(const colag_idl_CollisionInfo& in, msg::CollisionInfo& out) {
-  out.stamp = from_ns(in.stamp_ns);
+  out.stamp = time_at_nanoseconds(in.stamp_ns);
   out.ugv_id = in.ugv_id;
   out.seq = in.seq;
   out.cancel = in.cancel;
@@ -131,7 +125,7 @@ Status from_idl(const colag_idl_CollisionInfo& in, msg::CollisionInfo& out) {
 // --- UgvStatus ----------------------------------------------------------------------------------
 void to_idl(const msg::UgvStatus& in, IdlSample<msg::UgvStatus>& out) {
   auto& s = out.sample;
-  s.stamp_ns = to_ns(in.stamp);
+  s.stamp_ns = to_nanoseconds(in.stamp);
   s.ugv_id = in.ugv_id;
   s.mode = static_cast<std::uint8_t>(in.mode);
   copy(in.position_m, s.position_m);
@@ -149,7 +143,7 @@ Status from_idl(const colag_idl_UgvStatus& in, msg::UgvStatus& out) {
   if (in.mode > static_cast<std::uint8_t>(msg::UgvMode::kFault)) {
     return {Errc::kInvalidArgument, "unknown UGV mode"};
   }
-  out.stamp = from_ns(in.stamp_ns);
+  out.stamp = time_at_nanoseconds(in.stamp_ns);
   out.ugv_id = in.ugv_id;
   out.mode = static_cast<msg::UgvMode>(in.mode);
   copy(in.position_m, out.position_m);
@@ -168,7 +162,7 @@ Status from_idl(const colag_idl_UgvStatus& in, msg::UgvStatus& out) {
 // --- SupportPlan --------------------------------------------------------------------------------
 void to_idl(const msg::SupportPlan& in, IdlSample<msg::SupportPlan>& out) {
   auto& s = out.sample;
-  s.stamp_ns = to_ns(in.stamp);
+  s.stamp_ns = to_nanoseconds(in.stamp);
   s.uav_id = in.uav_id;
   s.seq = in.seq;
   s.total_lateness_s = in.total_lateness_s;
@@ -191,7 +185,7 @@ Status from_idl(const colag_idl_SupportPlan& in, msg::SupportPlan& out) {
       (in.stops._length > 0 && !in.stops._buffer)) {
     return {Errc::kInvalidArgument, "support plan longer than its bound"};
   }
-  out.stamp = from_ns(in.stamp_ns);
+  out.stamp = time_at_nanoseconds(in.stamp_ns);
   out.uav_id = in.uav_id;
   out.seq = in.seq;
   out.total_lateness_s = in.total_lateness_s;

@@ -281,9 +281,7 @@ int main(int argc, char** argv) {
   out.sim_time_s = monitor.elapsed_s_;
   out.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-  double reach_sum = 0.0;
   int reached = 0;
-  const auto n = static_cast<double>(cfg.ugvs);
   for (int i = 0; i < cfg.ugvs; ++i) {
     const auto k = static_cast<std::size_t>(i);
     mission::UgvOutcome o;
@@ -291,23 +289,11 @@ int main(int argc, char** argv) {
     o.reached = monitor.reached_[k];
     o.reach_time_s = o.reached ? monitor.reach_s_[k] : -1.0;
     o.waiting_time_s = traffic.status[k].waiting_time_s;
-    o.traj_length_m = world.ugv(i).travelled_m();
-    o.min_clearance_m = world.min_clearance_m(i);
     o.support_requests = traffic.requests[k];
-    for (const auto& c : world.collisions())
-      o.collided = o.collided || c.ugv == i || c.other_ugv == i;
-    if (o.reached) {
-      reach_sum += o.reach_time_s;
-      ++reached;
-    }
-    out.waiting_time_s += o.waiting_time_s / n;
-    out.max_waiting_time_s = std::max(out.max_waiting_time_s, o.waiting_time_s);
-    out.ugv_traj_length_m += o.traj_length_m / n;
+    reached += o.reached ? 1 : 0;
     out.ugvs.push_back(o);
   }
-  out.reach_time_s = reached > 0 ? reach_sum / reached : -1.0;
-  out.all_reached = reached == cfg.ugvs;
-  out.collisions = static_cast<int>(world.collisions().size());
+  mission::summarise(world, out);
   out.uav_traj_length_m = world.uav().travelled_m();
   out.map_patches = traffic.patches;
   out.map_patch_bytes = traffic.patch_bytes;

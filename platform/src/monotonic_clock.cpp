@@ -13,7 +13,7 @@ TimePoint MonotonicClock::now() const {
 }
 
 std::int64_t MonotonicClock::monotonic_ns(TimePoint t) const {
-  const std::int64_t ns = t.time_since_epoch().count();
+  const std::int64_t ns = to_nanoseconds(t);
   return scale_ == 1.0 ? ns : static_cast<std::int64_t>(static_cast<double>(ns) / scale_);
 }
 

@@ -56,10 +56,7 @@ std::uint64_t RealtimeExecutor::run_until(TimePoint end) {
       const TimePoint started = clock_.now();
       schedule_.entry(i).task->step(schedule_.release_of(i));
       const TimePoint finished = clock_.now();
-      const TaskStats before = schedule_.stats(i);
-      schedule_.complete(i, started, finished - started, finished);
-      const TaskStats& after = schedule_.stats(i);
-      if (after.overruns != before.overruns || after.skipped != before.skipped)
+      if (schedule_.complete(i, started, finished - started, finished))
         schedule_.entry(i).task->on_overrun(finished - started);
       ++activations;
     }

@@ -32,14 +32,15 @@ TimePoint Schedule::next_release() const {
   return t;
 }
 
-void Schedule::complete(std::size_t i, TimePoint started, Duration step_time, TimePoint after) {
+bool Schedule::complete(std::size_t i, TimePoint started, Duration step_time, TimePoint after) {
   Row& row = rows_[i];
   TaskStats& st = row.stats;
   ++st.steps;
   st.total_step += step_time;
   st.longest_step = std::max(st.longest_step, step_time);
   st.max_release_delay = std::max(st.max_release_delay, started - row.next_release);
-  if (step_time > row.entry.budget) ++st.overruns;
+  const bool overran = step_time > row.entry.budget;
+  if (overran) ++st.overruns;
 
   row.next_release += row.entry.period;
   // Fell behind by whole periods: drop those activations instead of running them in a burst.
@@ -47,7 +48,9 @@ void Schedule::complete(std::size_t i, TimePoint started, Duration step_time, Ti
     const auto missed = (after - row.next_release) / row.entry.period;
     row.next_release += missed * row.entry.period;
     st.skipped += static_cast<std::uint64_t>(missed);
+    return true;
   }
+  return overran;
 }
 
 }  // namespace colag::platform

@@ -4,33 +4,9 @@
 #include <cmath>
 
 #include "sim.h"
+#include "take_one.hpp"
 
 namespace colag::sim {
-
-namespace {
-
-TimePoint from_ns(std::int64_t ns) {
-  return TimePoint{Duration{ns}};
-}
-std::int64_t to_ns(TimePoint t) {
-  return t.time_since_epoch().count();
-}
-
-// Takes the oldest sample of `reader` (loaned) and hands it to `use` if it carries data.
-// Returns false when nothing was queued.
-template <class Sample, class Use>
-bool take_one(dds_entity_t reader, Use&& use) {
-  if (reader <= 0) return false;
-  void* samples[1] = {nullptr};
-  dds_sample_info_t info[1];
-  const dds_return_t n = dds_take(reader, samples, info, 1, 1);
-  if (n <= 0) return false;
-  if (info[0].valid_data) use(*static_cast<const Sample*>(samples[0]));
-  dds_return_loan(reader, samples, n);
-  return true;
-}
-
-}  // namespace
 
 Status SimCanBus::send(const hal::CanFrame& frame, TimePoint) {
   if (!hal::is_valid(frame)) {
@@ -39,7 +15,7 @@ Status SimCanBus::send(const hal::CanFrame& frame, TimePoint) {
   }
   colag_sim_CanFrame f{};
   f.robot_id = robot_;
-  f.stamp_ns = to_ns(frame.stamp);
+  f.stamp_ns = to_nanoseconds(frame.stamp);
   f.can_id = frame.id;
   f.extended = frame.extended;
   f.dlc = frame.dlc;
@@ -57,7 +33,8 @@ bool SimCanBus::receive(hal::CanFrame& out) {
   while (!got &&
          take_one<colag_sim_CanFrame>(link_.reader(SimTopic::kCanToRobot), [&](const auto& f) {
            out = {};
-           out.stamp = from_ns(f.stamp_ns);  // the world's time stamp, as on a hardware-stamped bus
+           out.stamp = time_at_nanoseconds(
+               f.stamp_ns);  // the world's time stamp, as on a hardware-stamped bus
            out.id = f.can_id;
            out.extended = f.extended;
            out.dlc = f.dlc;
@@ -77,7 +54,7 @@ SimUavDevices::SimUavDevices(SimLink& link) : link_(link) {
 
 Status SimUavDevices::send_setpoint(const hal::FlightSetpoint& sp) {
   colag_sim_FlightSetpoint s{};
-  s.stamp_ns = to_ns(sp.stamp);
+  s.stamp_ns = to_nanoseconds(sp.stamp);
   for (int i = 0; i < 3; ++i) {
     s.position_m[i] = sp.position_m[i];
     s.velocity_mps[i] = sp.velocity_mps[i];
@@ -93,7 +70,7 @@ bool SimUavDevices::poll(hal::UavState& out) {
   // The newest state: drain the queue.
   bool got = false;
   while (take_one<colag_sim_UavState>(link_.reader(SimTopic::kUavState), [&](const auto& s) {
-    out.stamp = from_ns(s.stamp_ns);
+    out.stamp = time_at_nanoseconds(s.stamp_ns);
     out.pose.p = Vec3(s.position_m[0], s.position_m[1], s.position_m[2]);
     out.pose.q = Quat(s.orientation_wxyz[0], s.orientation_wxyz[1], s.orientation_wxyz[2],
                       s.orientation_wxyz[3]);
@@ -122,7 +99,7 @@ bool SimUavDevices::poll(hal::LidarScanView& out) {
       const hal::LidarPoint p{v[3 * i] * 1e-3F, v[3 * i + 1] * 1e-3F, v[3 * i + 2] * 1e-3F};
       (i < scan.return_count ? points_ : misses_).push_back(p);  // within the reserved capacity
     }
-    out = {from_ns(scan.stamp_ns), scan.max_range_m, points_, misses_};
+    out = {time_at_nanoseconds(scan.stamp_ns), scan.max_range_m, points_, misses_};
     got = true;
   })) {
   }
@@ -138,7 +115,7 @@ std::size_t SimUavDevices::poll(std::span<hal::RelativePoseDetection> out) {
     for (std::uint32_t i = 0; i < frame.detections._length && n < out.size(); ++i) {
       const colag_sim_RpeDetection& d = frame.detections._buffer[i];
       hal::RelativePoseDetection& r = out[n++];
-      r.stamp = from_ns(frame.stamp_ns);
+      r.stamp = time_at_nanoseconds(frame.stamp_ns);
       r.ugv_id = d.ugv_id;
       r.ugv_in_uav.p = Vec3(d.position_m[0], d.position_m[1], d.position_m[2]);
       r.ugv_in_uav.q = Quat(d.orientation_wxyz[0], d.orientation_wxyz[1], d.orientation_wxyz[2],

@@ -4,13 +4,11 @@
 #include <cmath>
 
 #include "sim.h"
+#include "take_one.hpp"
 
 namespace colag::sim {
 
 namespace {
-std::int64_t to_ns(TimePoint t) {
-  return t.time_since_epoch().count();
-}
 std::int16_t mm(float v) {
   return static_cast<std::int16_t>(std::clamp(std::lround(v * 1000.0F), -32767L, 32767L));
 }
@@ -23,26 +21,19 @@ WorldBridge::WorldBridge(SimLink& link, mock::SimWorld& world, bool with_uav)
 
 void WorldBridge::step() {
   // Robots' commands -> their simulated motor controllers.
-  for (;;) {
-    void* samples[1] = {nullptr};
-    dds_sample_info_t info[1];
-    const dds_return_t n = dds_take(link_.reader(SimTopic::kCanFromRobot), samples, info, 1, 1);
-    if (n <= 0) break;
-    if (info[0].valid_data) {
-      const auto& f = *static_cast<const colag_sim_CanFrame*>(samples[0]);
-      if (f.robot_id < world_.ugv_count()) {
-        hal::CanFrame frame;
-        frame.id = f.can_id;
-        frame.extended = f.extended;
-        frame.dlc = f.dlc;
-        std::copy_n(f.data, 8, frame.data);
-        (void)world_.ugv_can(f.robot_id).send(frame, TimePoint::max());
-        ++counters_.frames_from_robots;
-      } else {
-        ++counters_.frames_for_unknown_robots;
-      }
+  while (take_one<colag_sim_CanFrame>(link_.reader(SimTopic::kCanFromRobot), [&](const auto& f) {
+    if (f.robot_id >= world_.ugv_count()) {
+      ++counters_.frames_for_unknown_robots;
+      return;
     }
-    dds_return_loan(link_.reader(SimTopic::kCanFromRobot), samples, n);
+    hal::CanFrame frame;
+    frame.id = f.can_id;
+    frame.extended = f.extended;
+    frame.dlc = f.dlc;
+    std::copy_n(f.data, 8, frame.data);
+    (void)world_.ugv_can(f.robot_id).send(frame, TimePoint::max());
+    ++counters_.frames_from_robots;
+  })) {
   }
   // Motor controllers' frames -> the robots.
   for (int i = 0; i < world_.ugv_count(); ++i) {
@@ -50,7 +41,7 @@ void WorldBridge::step() {
     while (world_.ugv_can(i).receive(frame)) {
       colag_sim_CanFrame f{};
       f.robot_id = static_cast<std::uint16_t>(i);
-      f.stamp_ns = to_ns(frame.stamp);
+      f.stamp_ns = to_nanoseconds(frame.stamp);
       f.can_id = frame.id;
       f.extended = frame.extended;
       f.dlc = frame.dlc;
@@ -61,30 +52,23 @@ void WorldBridge::step() {
   if (!with_uav_) return;
 
   // Setpoints -> the UAV body.
-  for (;;) {
-    void* samples[1] = {nullptr};
-    dds_sample_info_t info[1];
-    const dds_return_t n = dds_take(link_.reader(SimTopic::kSetpoint), samples, info, 1, 1);
-    if (n <= 0) break;
-    if (info[0].valid_data) {
-      const auto& s = *static_cast<const colag_sim_FlightSetpoint*>(samples[0]);
-      hal::FlightSetpoint sp;
-      sp.stamp = TimePoint{Duration{s.stamp_ns}};
-      sp.position_m = Vec3(s.position_m[0], s.position_m[1], s.position_m[2]);
-      sp.velocity_mps = Vec3(s.velocity_mps[0], s.velocity_mps[1], s.velocity_mps[2]);
-      sp.acceleration_mps2 =
-          Vec3(s.acceleration_mps2[0], s.acceleration_mps2[1], s.acceleration_mps2[2]);
-      sp.yaw_rad = s.yaw_rad;
-      (void)world_.uav().send_setpoint(sp);
-      ++counters_.setpoints;
-    }
-    dds_return_loan(link_.reader(SimTopic::kSetpoint), samples, n);
+  while (take_one<colag_sim_FlightSetpoint>(link_.reader(SimTopic::kSetpoint), [&](const auto& s) {
+    hal::FlightSetpoint sp;
+    sp.stamp = time_at_nanoseconds(s.stamp_ns);
+    sp.position_m = Vec3(s.position_m[0], s.position_m[1], s.position_m[2]);
+    sp.velocity_mps = Vec3(s.velocity_mps[0], s.velocity_mps[1], s.velocity_mps[2]);
+    sp.acceleration_mps2 =
+        Vec3(s.acceleration_mps2[0], s.acceleration_mps2[1], s.acceleration_mps2[2]);
+    sp.yaw_rad = s.yaw_rad;
+    (void)world_.uav().send_setpoint(sp);
+    ++counters_.setpoints;
+  })) {
   }
   // The UAV's state.
   hal::UavState st;
   while (world_.uav().poll(st)) {
     colag_sim_UavState s{};
-    s.stamp_ns = to_ns(st.stamp);
+    s.stamp_ns = to_nanoseconds(st.stamp);
     for (int k = 0; k < 3; ++k) {
       s.position_m[k] = st.pose.p[k];
       s.velocity_mps[k] = st.velocity_mps[k];
@@ -108,7 +92,7 @@ void WorldBridge::step() {
       }
     }
     colag_sim_LidarScan s{};
-    s.stamp_ns = to_ns(scan.stamp);
+    s.stamp_ns = to_nanoseconds(scan.stamp);
     s.max_range_m = scan.max_range_m;
     s.return_count = static_cast<std::uint32_t>(scan.points.size());
     s.xyz_mm._buffer = xyz_mm_.data();
@@ -126,7 +110,7 @@ void WorldBridge::step() {
   if (n > 0) {
     colag_sim_RpeDetection out[limits::kMaxRpeDetectionsPerFrame];
     colag_sim_RpeFrame frame{};
-    frame.stamp_ns = to_ns(dets[0].stamp);
+    frame.stamp_ns = to_nanoseconds(dets[0].stamp);
     for (std::size_t i = 0; i < n; ++i) {
       out[i] = {};
       out[i].ugv_id = dets[i].ugv_id;

@@ -404,29 +404,14 @@ Result<MissionOutcome> run_mission(const MissionConfig& cfg, MissionTrace* trace
   out.sim_time_s = to_seconds(ex->now());
   out.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-  double reach_sum = 0.0;
-  int reached = 0;
   for (std::size_t i = 0; i < ugvs.size(); ++i) {
     UgvOutcome& o = out.ugvs[i];
     o.id = static_cast<int>(i);
     o.waiting_time_s = ugvs[i].task->waiting_time_s();
-    o.traj_length_m = world->ugv(static_cast<int>(i)).travelled_m();
-    o.min_clearance_m = world->min_clearance_m(static_cast<int>(i));
     o.support_requests = support.requests[i];
     if (!o.reached) o.reach_time_s = -1.0;
-    for (const auto& c : world->collisions())
-      o.collided = o.collided || c.ugv == o.id || c.other_ugv == o.id;
-    if (o.reached) {
-      reach_sum += o.reach_time_s;
-      ++reached;
-    }
-    out.waiting_time_s += o.waiting_time_s / static_cast<double>(ugvs.size());
-    out.max_waiting_time_s = std::max(out.max_waiting_time_s, o.waiting_time_s);
-    out.ugv_traj_length_m += o.traj_length_m / static_cast<double>(ugvs.size());
   }
-  out.reach_time_s = reached > 0 ? reach_sum / reached : -1.0;
-  out.all_reached = reached == cfg.ugvs;
-  out.collisions = static_cast<int>(world->collisions().size());
+  summarise(*world, out);
   if (uav) {
     out.uav_traj_length_m = world->uav().travelled_m();
     out.map_patches = uav->sharer().counters().patches;
@@ -454,6 +439,28 @@ Result<MissionOutcome> run_mission(const MissionConfig& cfg, MissionTrace* trace
     }
   }
   return out;
+}
+
+void summarise(const mock::SimWorld& world, MissionOutcome& out) {
+  double reach_sum = 0.0;
+  int reached = 0;
+  const auto n = static_cast<double>(out.ugvs.size());
+  for (UgvOutcome& o : out.ugvs) {
+    o.traj_length_m = world.ugv(o.id).travelled_m();
+    o.min_clearance_m = world.min_clearance_m(o.id);
+    for (const auto& c : world.collisions())
+      o.collided = o.collided || c.ugv == o.id || c.other_ugv == o.id;
+    if (o.reached) {
+      reach_sum += o.reach_time_s;
+      ++reached;
+    }
+    out.waiting_time_s += o.waiting_time_s / n;
+    out.max_waiting_time_s = std::max(out.max_waiting_time_s, o.waiting_time_s);
+    out.ugv_traj_length_m += o.traj_length_m / n;
+  }
+  out.reach_time_s = reached > 0 ? reach_sum / reached : -1.0;
+  out.all_reached = reached == static_cast<int>(out.ugvs.size());
+  out.collisions = static_cast<int>(world.collisions().size());
 }
 
 std::string to_json(const MissionOutcome& o, bool include_wall_time) {

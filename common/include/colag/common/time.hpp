@@ -45,5 +45,12 @@ constexpr TimePoint time_at_seconds(double s) {
 constexpr Duration period_of_hz(double hz) {
   return seconds(1.0 / hz);
 }
+// A TimePoint as the int64 nanoseconds that message fields carry, and back (exact).
+constexpr std::int64_t to_nanoseconds(TimePoint t) {
+  return t.time_since_epoch().count();
+}
+constexpr TimePoint time_at_nanoseconds(std::int64_t ns) {
+  return TimePoint{Duration{ns}};
+}
 
 }  // namespace colag

@@ -35,7 +35,8 @@ class Schedule {
 
   // Book-keeping after row i ran the activation released at its next_release:
   // `started` is when the step began, `step_time` how long it took, `after` the time now.
-  void complete(std::size_t i, TimePoint started, Duration step_time, TimePoint after);
+  // True when the step overran its budget or activations had to be skipped.
+  bool complete(std::size_t i, TimePoint started, Duration step_time, TimePoint after);
 
  private:
   struct Row {

@@ -12,6 +12,10 @@
 #include "colag/common/status.hpp"
 #include "colag/mock/box_world.hpp"
 
+namespace colag::mock {
+class SimWorld;
+}
+
 namespace colag::mission {
 
 enum class Ablation { kNone, kNoRpe, kNoUncertainty, kNoScheduling, kNoTimeWindows };
@@ -140,6 +144,11 @@ bool build_world(const MissionConfig& config, mock::BoxWorld& world, std::string
 // Runs one mission. Fails (with a message) only on a bad configuration or map file.
 Result<MissionOutcome> run_mission(const MissionConfig& config, MissionTrace* trace = nullptr,
                                    std::string* error = nullptr);
+
+// Completes an outcome whose UGVs have their id, reached, reach time, waiting time and support
+// requests set: the ground truth from `world` (path length, clearance, collisions) and the
+// paper's averages. Shared by colag_sim's missions and colag_world (SITL).
+void summarise(const mock::SimWorld& world, MissionOutcome& out);
 
 std::string to_json(const MissionOutcome& outcome, bool include_wall_time = true);
 
