@@ -149,8 +149,10 @@ NFT
 else
   for r in "${robots[@]}"; do ns_of+=(""); done
 fi
+# Run as `in_ns NS cmd... &`: exec makes the background job the program itself, so $! is its
+# PID (`ip netns exec` execs the command in turn) and stopping it by PID reaches the program.
 in_ns() {  # namespace command...
-  if [ -n "$1" ]; then local ns=$1; shift; ip netns exec "$ns" "$@"; else shift; "$@"; fi
+  if [ -n "$1" ]; then local ns=$1; shift; exec ip netns exec "$ns" "$@"; else shift; exec "$@"; fi
 }
 
 echo "sitl: $scenario, $ugvs UGVs, seed $seed, time x$scale, DDS domain $domain (sim link $((domain + 1)))$( ((netns)) && echo ", one network namespace per robot")$( ((loss)) && echo ", $loss % loss")"
@@ -172,7 +174,7 @@ set +e
 wait "$world"
 world_rc=$?
 set -e
-kill "$tailer" 2>/dev/null || true
+wait "$tailer" 2>/dev/null || true  # tail --pid ends within a second of the world
 wall=$(($(date +%s) - start))
 
 if ((netns)); then
@@ -185,6 +187,13 @@ if ((netns)); then
 fi
 cleanup
 pids=() namespaces=()
+# Nothing of this run may outlive it (a stray robot on the same domain would join the next run).
+if pgrep -f -- "$run/" >/dev/null; then
+  echo "sitl: processes of this run survived the stop:" >&2
+  pgrep -af -- "$run/" >&2
+  pkill -KILL -f -- "$run/" || true
+  exit 1
+fi
 if ((world_rc != 0)) || [ ! -s "$json" ]; then
   echo "sitl: colag_world failed (exit $world_rc); see $run/*.log" >&2
   exit 1
