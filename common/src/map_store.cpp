@@ -13,10 +13,23 @@ MapStore::MapStore(const MapStoreConfig& config) : config_(config) {
   near_occupied_.fill(0);
   near_unknown_.fill(0);
   if (!config_.unknown_blocks_prediction) return;
+  // Every cell starts unknown, so a cell's count is the number of disc cells inside the grid:
+  // the whole disc away from the edges (stamping all 160 000 cells took ~10 ms per robot).
   const auto& g = geometry();
+  int reach = 0;
+  for (const CellIndex& d : predict_disc_)
+    reach = std::max({reach, std::abs(d.x), std::abs(d.y)});
+  near_unknown_.fill(static_cast<std::uint16_t>(predict_disc_.size()));
   for (int y = 0; y < g.cells_y(); ++y) {
-    for (int x = 0; x < g.cells_x(); ++x)
-      stamp({x, y}, predict_disc_, near_unknown_, +1);
+    const bool edge_row = y < reach || y >= g.cells_y() - reach;
+    for (int x = 0; x < g.cells_x(); ++x) {
+      if (!edge_row && x >= reach && x < g.cells_x() - reach) continue;
+      std::uint16_t inside = 0;
+      for (const CellIndex& d : predict_disc_)
+        inside =
+            static_cast<std::uint16_t>(inside + (g.contains(CellIndex{x + d.x, y + d.y}) ? 1 : 0));
+      near_unknown_[g.index(CellIndex{x, y})] = inside;
+    }
   }
 }
 

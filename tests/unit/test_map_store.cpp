@@ -34,6 +34,17 @@ TEST_F(MapStoreTest, BeforeAnyDataEverythingIsUnknownBlockedForPredictionFreeFor
   EXPECT_TRUE(map->predict_blocked(Vec2(0, -21)));
 }
 
+TEST_F(MapStoreTest, AWholeMapOfFreeCellsUnblocksEveryCellUpToTheEdges) {
+  // The initial unknown counts (computed, not stamped) must fall to exactly zero everywhere,
+  // along the grid's edges and in its corners too.
+  const double lo = g.origin_x() + 0.05, hi = g.origin_x() + g.cells_x() * 0.1 - 0.05;
+  ASSERT_TRUE(test::fill_map(*map, lo, lo, hi, hi, [](const Vec2&) { return CellState::kFree; }));
+  for (int y = 0; y < g.cells_y(); ++y) {
+    for (int x = 0; x < g.cells_x(); ++x)
+      ASSERT_FALSE(map->predict_blocked(CellIndex{x, y})) << x << "," << y;
+  }
+}
+
 TEST_F(MapStoreTest, MergesAPatchAndInflatesBothViews) {
   const Vec2 obstacle(0.05, 0.05);  // the centre of cell (200, 200)
   ASSERT_TRUE(test::fill_map(*map, -3, -3, 3, 3, [&](const Vec2& p) {

@@ -186,6 +186,57 @@ TEST(Mapper, EarlyStopNeverAddsFreeSpaceAndAgreesWithFullTracing) {
   EXPECT_LT(fast->counters().voxel_visits * 3, full->counters().voxel_visits);
 }
 
+// Nothing above the ceiling is worth tracing: it stays unknown, the layers below are mapped as
+// without a ceiling (up to the merging of rays that now end together at the ceiling), and a
+// sensor above the ceiling still maps what it flies through.
+TEST(Mapper, CeilingLeavesTheLayersAboveUnknownAndMapsThoseBelowTheSame) {
+  mock::MapGenConfig gen;
+  gen.boxes = 80;
+  const mock::BoxWorld world = mock::generate_box_world(gen).value();
+  auto lidar = std::make_unique<mock::LidarSimulator>();
+  MapperConfig capped_cfg;
+  capped_cfg.ceiling_m = 1.5;
+  auto capped = std::make_unique<Mapper>(capped_cfg);
+  auto open = std::make_unique<Mapper>();
+  for (int k = 0; k < 40; ++k) {
+    const Pose3 pose{Vec3(0.3, 8.0 - 0.3 * k, 1.0), Quat::Identity()};
+    std::span<const hal::LidarPoint> points, misses;
+    lidar->scan(world, pose, points, misses);
+    capped->insert_scan(pose, {TimePoint{}, 8.0F, points, misses});
+    open->insert_scan(pose, {TimePoint{}, 8.0F, points, misses});
+  }
+  const auto& g = capped->geometry();
+  std::size_t above = 0, observed = 0, differ = 0, occupied_differ = 0;
+  for (int z = 0; z < g.cells_z(); ++z) {
+    for (int y = 0; y < g.cells_y(); ++y) {
+      for (int x = 0; x < g.cells_x(); ++x) {
+        const VoxelState a = capped->state(VoxelIndex{x, y, z});
+        const VoxelState b = open->state(VoxelIndex{x, y, z});
+        if (z >= 15) {
+          above += a != VoxelState::kUnknown;
+          continue;
+        }
+        observed += b != VoxelState::kUnknown;
+        differ += a != b;
+        occupied_differ += (a == VoxelState::kOccupied) != (b == VoxelState::kOccupied);
+      }
+    }
+  }
+  EXPECT_EQ(above, 0u);
+  EXPECT_GT(observed, 100000u);
+  EXPECT_EQ(occupied_differ, 0u);
+  EXPECT_LT(static_cast<double>(differ) / static_cast<double>(observed), 0.01);
+  EXPECT_LT(capped->counters().voxel_visits, open->counters().voxel_visits);
+
+  // Flying at 2.05 m, above the 1.5 m ceiling: the sensor's own layer is still mapped.
+  const Pose3 high{Vec3(0.3, 0.3, 2.05), Quat::Identity()};
+  std::span<const hal::LidarPoint> points, misses;
+  lidar->scan(world, high, points, misses);
+  capped->insert_scan(high, {TimePoint{}, 8.0F, points, misses});
+  EXPECT_EQ(capped->state(Vec3(2.3, 0.3, 2.05)), VoxelState::kFree);
+  EXPECT_EQ(capped->state(Vec3(2.3, 0.3, 2.25)), VoxelState::kUnknown);
+}
+
 // The halves of a scan touch disjoint voxels, so running them on two threads must give the very
 // same map as running them one after the other.
 TEST(Mapper, SameMapOnOneThreadAndOnTwo) {

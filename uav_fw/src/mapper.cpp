@@ -70,28 +70,47 @@ inline bool Mapper::update(std::size_t i, std::int8_t delta, Part& part) {
 // creates free space (a test compares it with full tracing).
 bool Mapper::trace(const Vec3& a, const Vec3& b, bool first_is_end, bool hit, Runs& runs,
                    Part& part) {
+  // Everything the loop touches is a local: the map's int8 writes may alias any memory, so
+  // members, counters and the runs would otherwise be reloaded and stored at every voxel.
+  std::int8_t* const logodds = logodds_.data();
+  std::uint64_t* const touched = touched_.data();
+  const int lo = min_, hi = max_, miss = miss_;
   const int stop_unchanged = config_.early_stop_voxels;
   const int stop_crossed = config_.early_stop_crossed;
-  std::uint64_t visits = 0;  // counted locally: the map's int8 writes may alias a member
+  int unchanged = runs.unchanged, crossed = runs.crossed;
+  std::uint64_t visits = 0, updates = 0;
+  // Applies `delta` once per scan; true if the voxel changed.
+  const auto apply = [&](std::size_t i, int delta) {
+    std::uint64_t& word = touched[i >> 6];
+    word |= std::uint64_t{1} << (i & 63);
+    const int old = logodds[i];
+    const int now = std::clamp((old == kUnknown ? 0 : old) + delta, lo, hi);
+    logodds[i] = static_cast<std::int8_t>(now);
+    ++updates;
+    return now != old;
+  };
   const bool stopped = any_voxel_index_on_segment(geometry(), a, b, [&](std::size_t i) {
     ++visits;
+    const bool seen = (touched[i >> 6] >> (i & 63)) & 1U;
     if (first_is_end) {
       first_is_end = false;
-      update(i, hit ? hit_ : miss_, part);
+      if (!seen) apply(i, hit ? hit_ : miss);  // a hit was applied already
       return false;
     }
-    if (touched(i)) {
-      ++runs.crossed;
-      return ++runs.unchanged >= stop_unchanged || runs.crossed >= stop_crossed;
+    if (seen) {
+      ++crossed;
+      return ++unchanged >= stop_unchanged || crossed >= stop_crossed;
     }
-    runs.crossed = 0;
-    if (update(i, miss_, part)) {
-      runs.unchanged = 0;
+    crossed = 0;
+    if (apply(i, miss)) {
+      unchanged = 0;
       return false;
     }
-    return ++runs.unchanged >= stop_unchanged;
+    return ++unchanged >= stop_unchanged;
   });
+  runs = {unchanged, crossed};
   part.voxel_visits += visits;
+  part.voxel_updates += updates;
   return !stopped;
 }
 
@@ -106,14 +125,15 @@ void Mapper::both(F&& part) {
 }
 
 // Rays [from, to) of the scan (points, then misses) in world coordinates: cut at the maximum
-// range and at the grid's edge (rays may leave it, e.g. through the ceiling), with their end
-// voxel. Each ray is computed on its own, so any split of the range gives the same rays.
-void Mapper::prepare(const Pose3& sensor, const hal::LidarScanView& scan, std::size_t from,
-                     std::size_t to, Part& part) {
+// range and where they leave the mapped box (the grid below `top_m`), with their end voxel.
+// Each ray is computed on its own, so any split of the range gives the same rays.
+void Mapper::prepare(const Pose3& sensor, const hal::LidarScanView& scan, double top_m,
+                     std::size_t from, std::size_t to, Part& part) {
   const auto& g = geometry();
   const Mat3 R = sensor.q.toRotationMatrix();
   const Vec3 lo(g.origin_x(), g.origin_y(), g.origin_z());
-  const Vec3 hi = lo + g.resolution() * Vec3(g.cells_x(), g.cells_y(), g.cells_z());
+  Vec3 hi = lo + g.resolution() * Vec3(g.cells_x(), g.cells_y(), g.cells_z());
+  hi.z() = std::min(hi.z(), top_m);
   for (std::size_t k = from; k < to; ++k) {
     const bool returns = k < scan.points.size();
     const hal::LidarPoint& p = returns ? scan.points[k] : scan.misses[k - scan.points.size()];
@@ -130,7 +150,7 @@ void Mapper::prepare(const Pose3& sensor, const hal::LidarScanView& scan, std::s
     ray.end = sensor.p + R * (within ? local : local * (max_r / std::sqrt(r2)));
     ray.hit = returns && within;
     VoxelIndex v = g.voxel_of(ray.end);
-    if (!g.contains(v)) {
+    if (!g.contains(v) || ray.end.z() >= hi.z()) {
       const Vec3 d = ray.end - sensor.p;
       double t = 1.0;
       for (int a = 0; a < 3; ++a) {
@@ -203,13 +223,18 @@ void Mapper::insert_scan(const Pose3& sensor, const hal::LidarScanView& scan) {
     part.rays_outside = part.rays_merged = part.voxel_updates = part.voxel_visits = 0;
   }
 
+  // The ceiling, on a voxel boundary and at least a voxel above the sensor's voxel.
+  const double layers =
+      std::max((config_.ceiling_m - g.origin_z()) / g.resolution(), g.voxel_of(sensor.p).z + 1.0);
+  const double top_m = g.origin_z() + std::ceil(std::min(layers, 1e6) - 1e-9) * g.resolution();
+
   // 1. Clear the per-scan bits and compute the rays, each part a half of both.
   both([&](int k) {
     const std::size_t words = touched_.size(), w0 = k == 0 ? 0 : words / 2,
                       w1 = k == 0 ? words / 2 : words;
     std::fill(touched_.begin() + w0, touched_.begin() + w1, 0);
     std::fill(ended_.begin() + w0, ended_.begin() + w1, 0);
-    prepare(sensor, scan, k == 0 ? 0 : n / 2, k == 0 ? n / 2 : n, parts_[k]);
+    prepare(sensor, scan, top_m, k == 0 ? 0 : n / 2, k == 0 ? n / 2 : n, parts_[k]);
   });
   // 2. The halves south and north of the sensor's row.
   const int sensor_row = g.voxel_of(sensor.p).y;

@@ -26,6 +26,15 @@ SharerConfig flight_cutter_config(const UavSupervisorConfig& c) {
   return s;
 }
 
+// The mapper traces nothing above the highest layer that is read: the top of the flight layer
+// or of the UGVs' body band.
+MapperConfig mapper_config(const UavSupervisorConfig& c) {
+  MapperConfig m = c.mapper;
+  m.ceiling_m = std::min(
+      m.ceiling_m, std::max(c.flight.altitude_m + c.flight_band_half_m, c.sharer.band_high_m));
+  return m;
+}
+
 }  // namespace
 
 UavSupervisorTask::UavSupervisorTask(const UavSupervisorConfig& config,
@@ -46,7 +55,7 @@ UavSupervisorTask::UavSupervisorTask(const UavSupervisorConfig& config,
                     &UavSupervisorTask::sharing_step),
       scheduling_loop_(*this, "uav_scheduling", &UavSupervisorTask::init,
                        &UavSupervisorTask::scheduling_step),
-      mapper_(config.mapper, fork_join),
+      mapper_(mapper_config(config), fork_join),
       sharer_(config.sharer),
       flight_cutter_(flight_cutter_config(config)),
       flight_layer_(flight_layer_config(config)),

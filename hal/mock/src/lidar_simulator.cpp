@@ -6,16 +6,25 @@
 
 namespace colag::mock {
 
-double ray_box(const Vec3& o, const Vec3& d, const Box& b) {
+BoxRay::BoxRay(const Vec3& o, const Vec3& d) : origin(o), inv_dir(Vec3::Zero()) {
+  for (int a = 0; a < 3; ++a) {
+    parallel[static_cast<std::size_t>(a)] = std::abs(d[a]) < 1e-12;
+    if (!parallel[static_cast<std::size_t>(a)]) inv_dir[a] = 1.0 / d[a];
+  }
+}
+
+double ray_box(const BoxRay& ray, const Box& b) {
   const Vec3 lo(b.center.x() - b.half_size.x(), b.center.y() - b.half_size.y(), 0.0);
   const Vec3 hi(b.center.x() + b.half_size.x(), b.center.y() + b.half_size.y(), b.height_m);
   double t0 = 0.0, t1 = std::numeric_limits<double>::infinity();
-  for (int a = 0; a < 3; ++a) {
-    if (std::abs(d[a]) < 1e-12) {
-      if (o[a] < lo[a] || o[a] > hi[a]) return -1.0;
+  // Height first: most beams that miss pass above the boxes.
+  for (const int a : {2, 0, 1}) {
+    const double o = ray.origin[a];
+    if (ray.parallel[static_cast<std::size_t>(a)]) {
+      if (o < lo[a] || o > hi[a]) return -1.0;
       continue;
     }
-    double ta = (lo[a] - o[a]) / d[a], tb = (hi[a] - o[a]) / d[a];
+    double ta = (lo[a] - o) * ray.inv_dir[a], tb = (hi[a] - o) * ray.inv_dir[a];
     if (ta > tb) std::swap(ta, tb);
     t0 = std::max(t0, ta);
     t1 = std::min(t1, tb);
@@ -95,9 +104,12 @@ void LidarSimulator::scan(const BoxWorld& world, const Pose3& sensor,
         const Vec3 dir = R * local;
         double t = std::numeric_limits<double>::infinity();
         if (dir.z() < -1e-9) t = -sensor.p.z() / dir.z();  // the ground
-        for (const int i : candidates) {
-          const double tb = ray_box(sensor.p, dir, world.boxes[static_cast<std::size_t>(i)]);
-          if (tb >= 0.0 && tb < t) t = tb;
+        if (!candidates.empty()) {
+          const BoxRay ray(sensor.p, dir);
+          for (const int i : candidates) {
+            const double tb = ray_box(ray, world.boxes[static_cast<std::size_t>(i)]);
+            if (tb >= 0.0 && tb < t) t = tb;
+          }
         }
         if (t < pattern_.min_range_m) continue;  // too close: the sensor reports nothing
         const Vec3 end = local * std::min(t, range);

@@ -16,6 +16,7 @@
 // time; the map is the same either way (tested), since the split never depends on it.
 #include <array>
 #include <cstdint>
+#include <limits>
 
 #include "colag/common/fork_join.hpp"
 #include "colag/common/grid3d.hpp"
@@ -31,6 +32,11 @@ struct MapperConfig {
   double p_max = 0.90;
   double p_occupied = 0.80;
   double max_range_m = 15.0;  // longer returns are treated as misses at this range
+  // Rays are cut where they rise through this height (no hit there), as at the grid's edge:
+  // nothing above the highest layer anyone reads is worth tracing (the supervisor sets it to
+  // the top of its flight layer or of the UGVs' body band). Always at least a voxel above the
+  // sensor, so that a UAV flying higher still maps what it flies through.
+  double ceiling_m = std::numeric_limits<double>::infinity();
   // Early stop of a ray's back-trace (see Mapper::trace): after this many consecutive voxels it
   // did not change, or after this many consecutive voxels an earlier ray of the same scan
   // already crossed. Huge values trace every ray fully.
@@ -93,7 +99,7 @@ class Mapper {
   struct Runs {
     int unchanged = 0, crossed = 0;
   };
-  void prepare(const Pose3& sensor, const hal::LidarScanView& scan, std::size_t from,
+  void prepare(const Pose3& sensor, const hal::LidarScanView& scan, double top_m, std::size_t from,
                std::size_t to, Part& part);
   // Merges the rays ending in `row_lo`..`row_hi` by end voxel and applies their hits.
   void merge_and_hit(int row_lo, int row_hi, Part& part);

@@ -47,7 +47,18 @@ class LidarSimulator {
   std::vector<std::vector<int>> column_boxes_;  // per column: boxes that may be hit
 };
 
+// A ray set up for testing against many boxes: the inverse of its direction per axis, so a
+// box test multiplies instead of dividing.
+struct BoxRay {
+  BoxRay(const Vec3& origin, const Vec3& dir);
+  Vec3 origin, inv_dir;
+  std::array<bool, 3> parallel;  // no direction along this axis (inv_dir unused)
+};
+
 // Distance along the ray (origin, unit direction) to the box, or a negative value if missed.
-double ray_box(const Vec3& origin, const Vec3& dir, const Box& box);
+double ray_box(const BoxRay& ray, const Box& box);
+inline double ray_box(const Vec3& origin, const Vec3& dir, const Box& box) {
+  return ray_box(BoxRay(origin, dir), box);
+}
 
 }  // namespace colag::mock
