@@ -131,9 +131,13 @@ void Mapper::prepare(const Pose3& sensor, const hal::LidarScanView& scan, double
                      std::size_t from, std::size_t to, Part& part) {
   const auto& g = geometry();
   const Mat3 R = sensor.q.toRotationMatrix();
+  const double inv_res = 1.0 / g.resolution();  // as GridGeometry3d::voxel_of computes
   const Vec3 lo(g.origin_x(), g.origin_y(), g.origin_z());
-  Vec3 hi = lo + g.resolution() * Vec3(g.cells_x(), g.cells_y(), g.cells_z());
-  hi.z() = std::min(hi.z(), top_m);
+  // The mapped box in voxels: the grid below the ceiling's layer.
+  const Vec3 size(
+      g.cells_x(), g.cells_y(),
+      std::min(static_cast<double>(g.cells_z()), std::round((top_m - g.origin_z()) * inv_res)));
+  const Vec3 hi = lo + g.resolution() * size;
   for (std::size_t k = from; k < to; ++k) {
     const bool returns = k < scan.points.size();
     const hal::LidarPoint& p = returns ? scan.points[k] : scan.misses[k - scan.points.size()];
@@ -147,20 +151,24 @@ void Mapper::prepare(const Pose3& sensor, const hal::LidarScanView& scan, double
     const double max_r = config_.max_range_m;
     const double r2 = local.squaredNorm();
     const bool within = r2 <= max_r * max_r;
-    ray.end = sensor.p + R * (within ? local : local * (max_r / std::sqrt(r2)));
+    Vec3 end = sensor.p + R * (within ? local : local * (max_r / std::sqrt(r2)));
+    // The end in voxel units: inside the box, the voxel index is its truncation (no floor, no
+    // index round trip: this loop runs for every ray of every scan).
+    Vec3 u = (end - lo) * inv_res;
     ray.hit = returns && within;
-    VoxelIndex v = g.voxel_of(ray.end);
-    if (!g.contains(v) || ray.end.z() >= hi.z()) {
-      const Vec3 d = ray.end - sensor.p;
+    if (!((u.array() >= 0.0).all() && (u.array() < size.array()).all())) {
+      const Vec3 d = end - sensor.p;
       double t = 1.0;
       for (int a = 0; a < 3; ++a) {
         if (d[a] > 0) t = std::min(t, (hi[a] - sensor.p[a]) / d[a]);
         if (d[a] < 0) t = std::min(t, (lo[a] - sensor.p[a]) / d[a]);
       }
-      ray.end = sensor.p + std::max(0.0, t - 1e-6) * d;
+      end = sensor.p + std::max(0.0, t - 1e-6) * d;
       ray.hit = false;
-      v = g.voxel_of(ray.end);
+      u = ((end - lo) * inv_res).cwiseMax(0.0).cwiseMin(size - Vec3::Constant(0.5));
     }
+    ray.end = end;
+    const VoxelIndex v{static_cast<int>(u.x()), static_cast<int>(u.y()), static_cast<int>(u.z())};
     ray.voxel = static_cast<std::uint32_t>(g.index(v));
     ray.row = static_cast<std::int16_t>(v.y);
   }
