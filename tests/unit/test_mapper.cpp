@@ -3,6 +3,7 @@
 #include <memory>
 #include <set>
 #include <tuple>
+#include <vector>
 
 #include "colag/common/random.hpp"
 #include "colag/mock/lidar_simulator.hpp"
@@ -34,6 +35,28 @@ double segment_to_voxel(const GridGeometry3d& g, const Vec3& a, const Vec3& b, V
     best = std::min(best, (p - p.cwiseMax(lo).cwiseMin(hi)).norm());
   }
   return best;
+}
+
+// Scans of the dense map from each pose, each inserted into every map given.
+void scan_dense_map(const std::vector<Pose3>& poses, std::initializer_list<Mapper*> maps) {
+  mock::MapGenConfig gen;
+  gen.boxes = 80;
+  const mock::BoxWorld world = mock::generate_box_world(gen).value();
+  auto lidar = std::make_unique<mock::LidarSimulator>();
+  for (const Pose3& pose : poses) {
+    std::span<const hal::LidarPoint> points, misses;
+    lidar->scan(world, pose, points, misses);
+    for (Mapper* map : maps)
+      map->insert_scan(pose, {TimePoint{}, 8.0F, points, misses});
+  }
+}
+
+// A straight flight 1 m up: 12 m at 3 m/s, 10 Hz.
+std::vector<Pose3> straight_flight() {
+  std::vector<Pose3> poses;
+  for (int k = 0; k < 40; ++k)
+    poses.push_back({Vec3(0.3, 8.0 - 0.3 * k, 1.0), Quat::Identity()});
+  return poses;
 }
 
 }  // namespace
@@ -152,21 +175,11 @@ TEST(Mapper, IgnoresScansFromOutsideTheGridAndNonFinitePoints) {
 // else: so it may leave voxels less certain (unknown or more occupied), but it must never call a
 // voxel free that full tracing does not, and over a flight it must agree almost everywhere.
 TEST(Mapper, EarlyStopNeverAddsFreeSpaceAndAgreesWithFullTracing) {
-  mock::MapGenConfig gen;
-  gen.boxes = 80;
-  const mock::BoxWorld world = mock::generate_box_world(gen).value();
-  auto lidar = std::make_unique<mock::LidarSimulator>();
   MapperConfig full_cfg;
   full_cfg.early_stop_voxels = full_cfg.early_stop_crossed = 1 << 30;
   auto fast = std::make_unique<Mapper>();
   auto full = std::make_unique<Mapper>(full_cfg);
-  for (int k = 0; k < 40; ++k) {  // 12 m at 3 m/s, 10 Hz
-    const Pose3 pose{Vec3(0.3, 8.0 - 0.3 * k, 1.0), Quat::Identity()};
-    std::span<const hal::LidarPoint> points, misses;
-    lidar->scan(world, pose, points, misses);
-    fast->insert_scan(pose, {TimePoint{}, 8.0F, points, misses});
-    full->insert_scan(pose, {TimePoint{}, 8.0F, points, misses});
-  }
+  scan_dense_map(straight_flight(), {fast.get(), full.get()});
   const auto& g = fast->geometry();
   std::size_t observed = 0, differ = 0, false_free = 0;
   for (int z = 0; z < g.cells_z(); ++z) {
@@ -190,21 +203,11 @@ TEST(Mapper, EarlyStopNeverAddsFreeSpaceAndAgreesWithFullTracing) {
 // without a ceiling (up to the merging of rays that now end together at the ceiling), and a
 // sensor above the ceiling still maps what it flies through.
 TEST(Mapper, CeilingLeavesTheLayersAboveUnknownAndMapsThoseBelowTheSame) {
-  mock::MapGenConfig gen;
-  gen.boxes = 80;
-  const mock::BoxWorld world = mock::generate_box_world(gen).value();
-  auto lidar = std::make_unique<mock::LidarSimulator>();
   MapperConfig capped_cfg;
   capped_cfg.ceiling_m = 1.5;
   auto capped = std::make_unique<Mapper>(capped_cfg);
   auto open = std::make_unique<Mapper>();
-  for (int k = 0; k < 40; ++k) {
-    const Pose3 pose{Vec3(0.3, 8.0 - 0.3 * k, 1.0), Quat::Identity()};
-    std::span<const hal::LidarPoint> points, misses;
-    lidar->scan(world, pose, points, misses);
-    capped->insert_scan(pose, {TimePoint{}, 8.0F, points, misses});
-    open->insert_scan(pose, {TimePoint{}, 8.0F, points, misses});
-  }
+  scan_dense_map(straight_flight(), {capped.get(), open.get()});
   const auto& g = capped->geometry();
   std::size_t above = 0, observed = 0, differ = 0, occupied_differ = 0;
   for (int z = 0; z < g.cells_z(); ++z) {
@@ -229,10 +232,7 @@ TEST(Mapper, CeilingLeavesTheLayersAboveUnknownAndMapsThoseBelowTheSame) {
   EXPECT_LT(capped->counters().voxel_visits, open->counters().voxel_visits);
 
   // Flying at 2.05 m, above the 1.5 m ceiling: the sensor's own layer is still mapped.
-  const Pose3 high{Vec3(0.3, 0.3, 2.05), Quat::Identity()};
-  std::span<const hal::LidarPoint> points, misses;
-  lidar->scan(world, high, points, misses);
-  capped->insert_scan(high, {TimePoint{}, 8.0F, points, misses});
+  scan_dense_map({{Vec3(0.3, 0.3, 2.05), Quat::Identity()}}, {capped.get()});
   EXPECT_EQ(capped->state(Vec3(2.3, 0.3, 2.05)), VoxelState::kFree);
   EXPECT_EQ(capped->state(Vec3(2.3, 0.3, 2.25)), VoxelState::kUnknown);
 }

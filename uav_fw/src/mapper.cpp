@@ -22,6 +22,13 @@ Vec3 point_at_y(const Vec3& from, const Vec3& to, double y) {
   const Vec3 d = to - from;
   return from + std::clamp((y - from.y()) / d.y(), 0.0, 1.0) * d;
 }
+// The per-scan bit sets, one bit per voxel.
+bool test_bit(const std::uint64_t* words, std::size_t i) {
+  return (words[i >> 6] >> (i & 63)) & 1U;
+}
+void set_bit(std::uint64_t* words, std::size_t i) {
+  words[i >> 6] |= std::uint64_t{1} << (i & 63);
+}
 }  // namespace
 
 Mapper::Mapper(const MapperConfig& config, ForkJoin* fork_join)
@@ -48,17 +55,15 @@ VoxelState Mapper::state(VoxelIndex v) const {
   return state_of(logodds_[geometry().index(v)]);
 }
 
-inline bool Mapper::update(std::size_t i, std::int8_t delta, Part& part) {
-  std::uint64_t& word = touched_[i >> 6];
-  const std::uint64_t bit = std::uint64_t{1} << (i & 63);
-  if (word & bit) return false;  // once per scan; hits were applied first
-  word |= bit;
-  const std::int8_t old = logodds_[i];
-  const int base = old == kUnknown ? 0 : old;
-  logodds_[i] = static_cast<std::int8_t>(
-      std::clamp(base + delta, static_cast<int>(min_), static_cast<int>(max_)));
-  ++part.voxel_updates;
-  return logodds_[i] != old;
+// Pointers and bounds are passed in (not read from members) so that the hot loops keep them in
+// registers: the map's int8 writes may alias any memory.
+inline bool Mapper::add_once(std::int8_t* logodds, std::uint64_t* touched, std::size_t i, int delta,
+                             int lo, int hi) {
+  set_bit(touched, i);
+  const int old = logodds[i];
+  const int now = std::clamp((old == kUnknown ? 0 : old) + delta, lo, hi);
+  logodds[i] = static_cast<std::int8_t>(now);
+  return now != old;
 }
 
 // Rays are traced backwards, from the end towards the sensor: the end voxel gets a hit (already
@@ -79,19 +84,13 @@ bool Mapper::trace(const Vec3& a, const Vec3& b, bool first_is_end, bool hit, Ru
   const int stop_crossed = config_.early_stop_crossed;
   int unchanged = runs.unchanged, crossed = runs.crossed;
   std::uint64_t visits = 0, updates = 0;
-  // Applies `delta` once per scan; true if the voxel changed.
   const auto apply = [&](std::size_t i, int delta) {
-    std::uint64_t& word = touched[i >> 6];
-    word |= std::uint64_t{1} << (i & 63);
-    const int old = logodds[i];
-    const int now = std::clamp((old == kUnknown ? 0 : old) + delta, lo, hi);
-    logodds[i] = static_cast<std::int8_t>(now);
     ++updates;
-    return now != old;
+    return add_once(logodds, touched, i, delta, lo, hi);
   };
   const bool stopped = any_voxel_index_on_segment(geometry(), a, b, [&](std::size_t i) {
     ++visits;
-    const bool seen = (touched[i >> 6] >> (i & 63)) & 1U;
+    const bool seen = test_bit(touched, i);
     if (first_is_end) {
       first_is_end = false;
       if (!seen) apply(i, hit ? hit_ : miss);  // a hit was applied already
@@ -125,18 +124,16 @@ void Mapper::both(F&& part) {
 }
 
 // Rays [from, to) of the scan (points, then misses) in world coordinates: cut at the maximum
-// range and where they leave the mapped box (the grid below `top_m`), with their end voxel.
-// Each ray is computed on its own, so any split of the range gives the same rays.
-void Mapper::prepare(const Pose3& sensor, const hal::LidarScanView& scan, double top_m,
+// range and where they leave the mapped box (the grid's `top_layers` lowest layers), with their
+// end voxel. Each ray is computed on its own, so any split of the range gives the same rays.
+void Mapper::prepare(const Pose3& sensor, const hal::LidarScanView& scan, int top_layers,
                      std::size_t from, std::size_t to, Part& part) {
   const auto& g = geometry();
   const Mat3 R = sensor.q.toRotationMatrix();
   const double inv_res = 1.0 / g.resolution();  // as GridGeometry3d::voxel_of computes
   const Vec3 lo(g.origin_x(), g.origin_y(), g.origin_z());
-  // The mapped box in voxels: the grid below the ceiling's layer.
-  const Vec3 size(
-      g.cells_x(), g.cells_y(),
-      std::min(static_cast<double>(g.cells_z()), std::round((top_m - g.origin_z()) * inv_res)));
+  // The mapped box in voxels.
+  const Vec3 size(g.cells_x(), g.cells_y(), top_layers);
   const Vec3 hi = lo + g.resolution() * size;
   for (std::size_t k = from; k < to; ++k) {
     const bool returns = k < scan.points.size();
@@ -182,15 +179,16 @@ void Mapper::prepare(const Pose3& sensor, const hal::LidarScanView& scan, double
 void Mapper::merge_and_hit(int row_lo, int row_hi, Part& part) {
   for (Ray& ray : rays_) {
     if (ray.row < row_lo || ray.row > row_hi) continue;
-    std::uint64_t& word = ended_[ray.voxel >> 6];
-    const std::uint64_t bit = std::uint64_t{1} << (ray.voxel & 63);
-    ray.merged = (word & bit) != 0;  // only ever written by the half that owns the ray's row
+    ray.merged = test_bit(ended_.data(), ray.voxel);  // only the half owning the row writes it
     if (ray.merged) {
       ++part.rays_merged;
       continue;
     }
-    word |= bit;
-    if (ray.hit) update(ray.voxel, hit_, part);
+    set_bit(ended_.data(), ray.voxel);
+    if (ray.hit && !test_bit(touched_.data(), ray.voxel)) {
+      add_once(logodds_.data(), touched_.data(), ray.voxel, hit_, min_, max_);
+      ++part.voxel_updates;
+    }
   }
 }
 
@@ -219,7 +217,8 @@ void Mapper::insert_scan(const Pose3& sensor, const hal::LidarScanView& scan) {
   ++counters_.scans;
   const auto& g = geometry();
   const std::size_t total = scan.points.size() + scan.misses.size();
-  if (!g.contains(g.voxel_of(sensor.p)) || !all_finite(sensor.p)) {
+  const VoxelIndex sensor_voxel = g.voxel_of(sensor.p);
+  if (!g.contains(sensor_voxel) || !all_finite(sensor.p)) {
     counters_.rays_outside += total;
     return;
   }
@@ -231,10 +230,12 @@ void Mapper::insert_scan(const Pose3& sensor, const hal::LidarScanView& scan) {
     part.rays_outside = part.rays_merged = part.voxel_updates = part.voxel_visits = 0;
   }
 
-  // The ceiling, on a voxel boundary and at least a voxel above the sensor's voxel.
-  const double layers =
-      std::max((config_.ceiling_m - g.origin_z()) / g.resolution(), g.voxel_of(sensor.p).z + 1.0);
-  const double top_m = g.origin_z() + std::ceil(std::min(layers, 1e6) - 1e-9) * g.resolution();
+  // The layers mapped: up to the ceiling (rounded up to a voxel boundary), at least up to the
+  // sensor's layer, at most the grid.
+  const double ceiling_layers = (config_.ceiling_m - g.origin_z()) / g.resolution();
+  const double bounded = std::isnan(ceiling_layers) ? 1e6 : std::clamp(ceiling_layers, 0.0, 1e6);
+  const int top_layers =
+      std::clamp(static_cast<int>(std::ceil(bounded - 1e-9)), sensor_voxel.z + 1, g.cells_z());
 
   // 1. Clear the per-scan bits and compute the rays, each part a half of both.
   both([&](int k) {
@@ -242,10 +243,10 @@ void Mapper::insert_scan(const Pose3& sensor, const hal::LidarScanView& scan) {
                       w1 = k == 0 ? words / 2 : words;
     std::fill(touched_.begin() + w0, touched_.begin() + w1, 0);
     std::fill(ended_.begin() + w0, ended_.begin() + w1, 0);
-    prepare(sensor, scan, top_m, k == 0 ? 0 : n / 2, k == 0 ? n / 2 : n, parts_[k]);
+    prepare(sensor, scan, top_layers, k == 0 ? 0 : n / 2, k == 0 ? n / 2 : n, parts_[k]);
   });
   // 2. The halves south and north of the sensor's row.
-  const int sensor_row = g.voxel_of(sensor.p).y;
+  const int sensor_row = sensor_voxel.y;
   both([&](int k) { trace_half(sensor.p, sensor_row, k == 0 ? -1 : 1, parts_[k]); });
   // 3. The sensor's row: the rays that end in it, then the rest of those that reached it.
   Part& serial = parts_[0];

@@ -99,16 +99,17 @@ class Mapper {
   struct Runs {
     int unchanged = 0, crossed = 0;
   };
-  void prepare(const Pose3& sensor, const hal::LidarScanView& scan, double top_m, std::size_t from,
-               std::size_t to, Part& part);
+  void prepare(const Pose3& sensor, const hal::LidarScanView& scan, int top_layers,
+               std::size_t from, std::size_t to, Part& part);
   // Merges the rays ending in `row_lo`..`row_hi` by end voxel and applies their hits.
   void merge_and_hit(int row_lo, int row_hi, Part& part);
   void trace_half(const Vec3& origin, int sensor_row, int side, Part& part);
   // Back-traces a->b (a is the ray's end side); false if an early stop ended it.
   bool trace(const Vec3& a, const Vec3& b, bool first_is_end, bool hit, Runs& runs, Part& part);
-  // Applies `delta` once per scan (later calls are ignored); true if the voxel changed.
-  bool update(std::size_t i, std::int8_t delta, Part& part);
-  bool touched(std::size_t i) const { return (touched_[i >> 6] >> (i & 63)) & 1U; }
+  // Sets voxel i's per-scan bit and adds `delta` to its log-odds, clamped to [lo, hi]; true if
+  // the log-odds changed.
+  static bool add_once(std::int8_t* logodds, std::uint64_t* touched, std::size_t i, int delta,
+                       int lo, int hi);
   // Runs part(0) and part(1), at the same time when the platform gave us a fork-join.
   template <class F>
   void both(F&& part);
