@@ -237,8 +237,42 @@ TEST(Mapper, CeilingLeavesTheLayersAboveUnknownAndMapsThoseBelowTheSame) {
   EXPECT_EQ(capped->state(Vec3(2.3, 0.3, 2.25)), VoxelState::kUnknown);
 }
 
+// Cutting a scan by the sensor's row or by its column changes only the order in which the rays
+// are traced (which decides some early stops), not what is seen: the same obstacles, almost the
+// same free space. Flying along y, the default cuts by column.
+TEST(Mapper, RowAndColumnCutsMapTheSameObstacles) {
+  MapperConfig rows_cfg, columns_cfg;
+  rows_cfg.split = MapperSplit::kRows;
+  columns_cfg.split = MapperSplit::kColumns;
+  auto rows = std::make_unique<Mapper>(rows_cfg);
+  auto columns = std::make_unique<Mapper>(columns_cfg);
+  auto along = std::make_unique<Mapper>();
+  scan_dense_map(straight_flight(), {rows.get(), columns.get(), along.get()});
+  const auto& g = rows->geometry();
+  std::size_t observed = 0, differ = 0, occupied_differ = 0, along_differ = 0;
+  for (int z = 0; z < g.cells_z(); ++z) {
+    for (int y = 0; y < g.cells_y(); ++y) {
+      for (int x = 0; x < g.cells_x(); ++x) {
+        const VoxelIndex v{x, y, z};
+        const VoxelState a = rows->state(v), b = columns->state(v);
+        observed += a != VoxelState::kUnknown;
+        differ += a != b;
+        occupied_differ += (a == VoxelState::kOccupied) != (b == VoxelState::kOccupied);
+        along_differ += along->state(v) != b;
+      }
+    }
+  }
+  EXPECT_GT(observed, 100000u);
+  EXPECT_EQ(occupied_differ, 0u);
+  EXPECT_LT(static_cast<double>(differ) / static_cast<double>(observed), 0.01);
+  EXPECT_EQ(rows->counters().scans_by_column, 0u);
+  EXPECT_EQ(columns->counters().scans_by_column, 40u);
+  EXPECT_EQ(along->counters().scans_by_column, 40u);
+  EXPECT_EQ(along_differ, 0u);
+}
+
 // The halves of a scan touch disjoint voxels, so running them on two threads must give the very
-// same map as running them one after the other.
+// same map as running them one after the other (the wandering flight cuts by rows and columns).
 TEST(Mapper, SameMapOnOneThreadAndOnTwo) {
   mock::MapGenConfig gen;
   gen.boxes = 80;
@@ -272,4 +306,6 @@ TEST(Mapper, SameMapOnOneThreadAndOnTwo) {
   EXPECT_EQ(one->counters().voxel_updates, two->counters().voxel_updates);
   EXPECT_EQ(one->counters().voxel_visits, two->counters().voxel_visits);
   EXPECT_GT(one->counters().rays_resumed, 0u);
+  EXPECT_GT(one->counters().scans_by_column, 5u);
+  EXPECT_LT(one->counters().scans_by_column, 25u);
 }

@@ -11,16 +11,17 @@ std::int8_t to_units(double p) {
   const double l = std::log(p / (1.0 - p)) * kScale;
   return static_cast<std::int8_t>(std::clamp(std::lround(l), -127L, 127L));
 }
-// How far a half's part of a ray stops short of the sensor's row (and the rest starts inside it).
+// How far a half's part of a ray stops short of the sensor's slice (and the rest starts inside).
 constexpr double kEdge_m = 1e-7;
-// The y of the boundary between the sensor's voxel row and the half on `side` (-1 south, +1 north).
-double row_edge_y(const GridGeometry3d& g, int sensor_row, int side) {
-  return g.origin_y() + (sensor_row + (side < 0 ? 0 : 1)) * g.resolution();
+// Where the sensor's slice meets the half on `side` (-1 low, +1 high) along `axis`.
+double slice_edge(const GridGeometry3d& g, int axis, int cell, int side) {
+  const double origin = axis == 0 ? g.origin_x() : g.origin_y();
+  return origin + (cell + (side < 0 ? 0 : 1)) * g.resolution();
 }
-// The point of the segment from -> to at height y (clamped to the segment).
-Vec3 point_at_y(const Vec3& from, const Vec3& to, double y) {
+// The point of the segment from -> to whose coordinate `axis` is `value` (clamped to the segment).
+Vec3 point_at(const Vec3& from, const Vec3& to, int axis, double value) {
   const Vec3 d = to - from;
-  return from + std::clamp((y - from.y()) / d.y(), 0.0, 1.0) * d;
+  return from + std::clamp((value - from[axis]) / d[axis], 0.0, 1.0) * d;
 }
 // The per-scan bit sets, one bit per voxel.
 bool test_bit(const std::uint64_t* words, std::size_t i) {
@@ -39,15 +40,11 @@ Mapper::Mapper(const MapperConfig& config, ForkJoin* fork_join)
       min_(to_units(config.p_min)),
       max_(to_units(config.p_max)),
       occupied_(to_units(config.p_occupied)) {
-  // The two halves touch disjoint voxels, but bits of touched_ share 64-bit words where rows
-  // meet in memory. Within a layer that is only ever one half's row and the sensor's row; the
-  // last row of a layer meets the first row of the next, which the halves could both reach
-  // only if a ray could span (almost) the whole grid in y.
   const auto& g = geometry();
-  const int reach_rows = static_cast<int>(std::ceil(config.max_range_m / g.resolution())) + 2;
-  halves_disjoint_ = 2 * reach_rows < g.cells_y() - 1;
+  const double reach = std::ceil(config.max_range_m / g.resolution()) + 2;
+  reach_ = reach < std::max(g.cells_x(), g.cells_y()) ? static_cast<int>(reach)
+                                                      : std::max(g.cells_x(), g.cells_y());
   logodds_.fill(kUnknown);
-  touched_.fill(0);
 }
 
 VoxelState Mapper::state(VoxelIndex v) const {
@@ -74,11 +71,11 @@ inline bool Mapper::add_once(std::int8_t* logodds, std::uint64_t* touched, std::
 // earlier rays have done the work. Stopping early only ever skips miss updates, so it never
 // creates free space (a test compares it with full tracing).
 bool Mapper::trace(const Vec3& a, const Vec3& b, bool first_is_end, bool hit, Runs& runs,
-                   Part& part) {
+                   Part& part, Bits& bits) {
   // Everything the loop touches is a local: the map's int8 writes may alias any memory, so
   // members, counters and the runs would otherwise be reloaded and stored at every voxel.
   std::int8_t* const logodds = logodds_.data();
-  std::uint64_t* const touched = touched_.data();
+  std::uint64_t* const touched = bits.touched.data();
   const int lo = min_, hi = max_, miss = miss_;
   const int stop_unchanged = config_.early_stop_voxels;
   const int stop_crossed = config_.early_stop_crossed;
@@ -115,7 +112,7 @@ bool Mapper::trace(const Vec3& a, const Vec3& b, bool first_is_end, bool hit, Ru
 
 template <class F>
 void Mapper::both(F&& part) {
-  if (fork_join_ != nullptr && halves_disjoint_) {
+  if (fork_join_ != nullptr) {
     fork_join_->run(2, part);
   } else {
     part(0);
@@ -125,49 +122,68 @@ void Mapper::both(F&& part) {
 
 // Rays [from, to) of the scan (points, then misses) in world coordinates: cut at the maximum
 // range and where they leave the mapped box (the grid's `top_layers` lowest layers), with their
-// end voxel. Each ray is computed on its own, so any split of the range gives the same rays.
-void Mapper::prepare(const Pose3& sensor, const hal::LidarScanView& scan, int top_layers,
+// end voxel, listed by where they end relative to the cut. Each ray is computed on its own, so
+// any split of the range gives the same rays.
+void Mapper::prepare(const Pose3& sensor, const hal::LidarScanView& scan, int top_layers, Cut cut,
                      std::size_t from, std::size_t to, Part& part) {
   const auto& g = geometry();
   const Mat3 R = sensor.q.toRotationMatrix();
   const double inv_res = 1.0 / g.resolution();  // as GridGeometry3d::voxel_of computes
   const Vec3 lo(g.origin_x(), g.origin_y(), g.origin_z());
-  // The mapped box in voxels.
-  const Vec3 size(g.cells_x(), g.cells_y(), top_layers);
-  const Vec3 hi = lo + g.resolution() * size;
+  const Vec3 size(g.cells_x(), g.cells_y(), top_layers);  // the mapped box in voxels
+  const Vec3 sensor_u = (sensor.p - lo) * inv_res;
+  const double max_r = config_.max_range_m;
+  for (auto& list : part.ends)
+    list.clear();
   for (std::size_t k = from; k < to; ++k) {
     const bool returns = k < scan.points.size();
     const hal::LidarPoint& p = returns ? scan.points[k] : scan.misses[k - scan.points.size()];
-    Ray& ray = rays_[k];
     const Vec3 local(p.x_m, p.y_m, p.z_m);
     if (!all_finite(local)) {
-      ray.row = -1;
       ++part.rays_outside;
       continue;
     }
-    const double max_r = config_.max_range_m;
     const double r2 = local.squaredNorm();
     const bool within = r2 <= max_r * max_r;
-    Vec3 end = sensor.p + R * (within ? local : local * (max_r / std::sqrt(r2)));
+    Ray& ray = rays_[k];
+    ray.end = sensor.p + R * (within ? local : local * (max_r / std::sqrt(r2)));
+    ray.hit = returns && within;
     // The end in voxel units: inside the box, the voxel index is its truncation (no floor, no
     // index round trip: this loop runs for every ray of every scan).
-    Vec3 u = (end - lo) * inv_res;
-    ray.hit = returns && within;
+    Vec3 u = (ray.end - lo) * inv_res;
     if (!((u.array() >= 0.0).all() && (u.array() < size.array()).all())) {
-      const Vec3 d = end - sensor.p;
+      // Cut where the ray leaves the box: only the axes it leaves through need a division.
+      const Vec3 d = u - sensor_u;
       double t = 1.0;
       for (int a = 0; a < 3; ++a) {
-        if (d[a] > 0) t = std::min(t, (hi[a] - sensor.p[a]) / d[a]);
-        if (d[a] < 0) t = std::min(t, (lo[a] - sensor.p[a]) / d[a]);
+        if (u[a] >= size[a]) t = std::min(t, (size[a] - sensor_u[a]) / d[a]);
+        if (u[a] < 0.0) t = std::min(t, -sensor_u[a] / d[a]);
       }
-      end = sensor.p + std::max(0.0, t - 1e-6) * d;
+      t = std::max(0.0, t - 1e-6);
+      ray.end = sensor.p + t * (ray.end - sensor.p);
       ray.hit = false;
-      u = ((end - lo) * inv_res).cwiseMax(0.0).cwiseMin(size - Vec3::Constant(0.5));
+      u = ((ray.end - lo) * inv_res).cwiseMax(0.0).cwiseMin(size - Vec3::Constant(0.5));
     }
-    ray.end = end;
     const VoxelIndex v{static_cast<int>(u.x()), static_cast<int>(u.y()), static_cast<int>(u.z())};
     ray.voxel = static_cast<std::uint32_t>(g.index(v));
-    ray.row = static_cast<std::int16_t>(v.y);
+    const int along = cut.axis == 0 ? v.x : v.y;
+    const End end = along < cut.cell ? kLow : (along > cut.cell ? kHigh : kSlice);
+    (void)part.ends[end].push_back(static_cast<std::uint32_t>(k));
+  }
+}
+
+void Mapper::clear_bits(Bits& bits, int top_layers, int row_lo, int row_hi) const {
+  const auto& g = geometry();
+  row_lo = std::max(row_lo, 0);
+  row_hi = std::min(row_hi, g.cells_y() - 1);
+  if (row_lo > row_hi) return;
+  for (int z = 0; z < top_layers; ++z) {
+    const std::size_t w0 = g.index({0, row_lo, z}) >> 6;
+    const std::size_t w1 = (g.index({g.cells_x() - 1, row_hi, z}) >> 6) + 1;
+    std::fill(bits.touched.begin() + static_cast<std::ptrdiff_t>(w0),
+              bits.touched.begin() + static_cast<std::ptrdiff_t>(w1), 0);
+    std::fill(bits.ended.begin() + static_cast<std::ptrdiff_t>(w0),
+              bits.ended.begin() + static_cast<std::ptrdiff_t>(w1), 0);
   }
 }
 
@@ -175,40 +191,46 @@ void Mapper::prepare(const Pose3& sensor, const hal::LidarScanView& scan, int to
 // "discretize"): from the same origin to the same voxel they are at most a voxel's width apart
 // and cross the same voxels up to boundary grazing (about 2/3 of a VLP-32 scan at 0.1 m). Returns
 // come first in the scan, so a voxel with a return keeps it, and all hits are applied before any
-// ray is traced, so that the crossings of other rays do not wipe them out.
-void Mapper::merge_and_hit(int row_lo, int row_hi, Part& part) {
-  for (Ray& ray : rays_) {
-    if (ray.row < row_lo || ray.row > row_hi) continue;
-    ray.merged = test_bit(ended_.data(), ray.voxel);  // only the half owning the row writes it
-    if (ray.merged) {
-      ++part.rays_merged;
-      continue;
+// ray is traced, so that the crossings of other rays do not wipe them out. Only the caller
+// tracing `end` touches these lists and these voxels.
+void Mapper::merge_and_hit(End end, Part& part, Bits& bits) {
+  std::uint64_t* const ended = bits.ended.data();
+  std::uint64_t* const touched = bits.touched.data();
+  for (Part& prepared : parts_) {  // in scan order: part 0 prepared the first half
+    auto& list = prepared.ends[end];
+    std::size_t kept = 0;
+    for (const std::uint32_t k : list) {
+      const Ray& ray = rays_[k];
+      if (test_bit(ended, ray.voxel)) continue;
+      set_bit(ended, ray.voxel);
+      list[kept++] = k;
+      if (ray.hit && !test_bit(touched, ray.voxel)) {
+        add_once(logodds_.data(), touched, ray.voxel, hit_, min_, max_);
+        ++part.voxel_updates;
+      }
     }
-    set_bit(ended_.data(), ray.voxel);
-    if (ray.hit && !test_bit(touched_.data(), ray.voxel)) {
-      add_once(logodds_.data(), touched_.data(), ray.voxel, hit_, min_, max_);
-      ++part.voxel_updates;
-    }
+    part.rays_merged += list.size() - kept;
+    (void)list.resize(kept);
   }
 }
 
-// One half of a scan: the rays that end south (side -1) or north (+1) of the sensor's voxel row,
-// traced up to just before that row; those that get there are resumed later, in insert_scan.
-// Rays ending in one half only ever cross voxels of that half or of the sensor's row, so the
-// two halves can run at the same time.
-void Mapper::trace_half(const Vec3& origin, int sensor_row, int side, Part& part) {
-  const auto& g = geometry();
-  const int row_lo = side < 0 ? 0 : sensor_row + 1;
-  const int row_hi = side < 0 ? sensor_row - 1 : g.cells_y() - 1;
-  merge_and_hit(row_lo, row_hi, part);
-  const double edge_y = row_edge_y(g, sensor_row, side) + side * kEdge_m;  // just outside the row
-  for (std::uint32_t k = 0; k < rays_.size(); ++k) {
-    const Ray& ray = rays_[k];
-    if (ray.row < row_lo || ray.row > row_hi || ray.merged) continue;
-    Runs runs;
-    if (trace(ray.end, point_at_y(ray.end, origin, edge_y), true, ray.hit, runs, part)) {
-      (void)part.resume.push_back({k, static_cast<std::uint8_t>(std::min(runs.unchanged, 255)),
-                                   static_cast<std::uint8_t>(std::min(runs.crossed, 255))});
+// One half of a scan: the rays that end on the low (side -1) or high (+1) side of the sensor's
+// slice, traced up to just before the slice; those that get there are resumed later, in
+// insert_scan. Rays ending in one half only ever cross voxels of that half or of the slice, so
+// the two halves can run at the same time.
+void Mapper::trace_half(const Vec3& origin, Cut cut, int side, Part& part, Bits& bits) {
+  const End end = side < 0 ? kLow : kHigh;
+  merge_and_hit(end, part, bits);
+  const double edge = slice_edge(geometry(), cut.axis, cut.cell, side) + side * kEdge_m;
+  for (const Part& prepared : parts_) {
+    for (const std::uint32_t k : prepared.ends[end]) {
+      const Ray& ray = rays_[k];
+      Runs runs;
+      if (trace(ray.end, point_at(ray.end, origin, cut.axis, edge), true, ray.hit, runs, part,
+                bits)) {
+        (void)part.resume.push_back({k, static_cast<std::uint8_t>(std::min(runs.unchanged, 255)),
+                                     static_cast<std::uint8_t>(std::min(runs.crossed, 255))});
+      }
     }
   }
 }
@@ -237,32 +259,60 @@ void Mapper::insert_scan(const Pose3& sensor, const hal::LidarScanView& scan) {
   const int top_layers =
       std::clamp(static_cast<int>(std::ceil(bounded - 1e-9)), sensor_voxel.z + 1, g.cells_z());
 
-  // 1. Clear the per-scan bits and compute the rays, each part a half of both.
+  // The cut: by column when the sensor moved more along y than along x since the last scan
+  // (the new ground ahead then falls into both halves), by row when it moved more along x.
+  Cut cut;
+  const Vec3 moved = sensor.p - last_sensor_;
+  switch (config_.split) {
+    case MapperSplit::kRows:
+      cut.axis = 1;
+      break;
+    case MapperSplit::kColumns:
+      cut.axis = 0;
+      break;
+    case MapperSplit::kAlongMotion:
+      cut.axis = std::abs(moved.y()) > std::abs(moved.x())
+                     ? 0
+                     : (std::abs(moved.x()) > std::abs(moved.y()) ? 1 : last_axis_);
+      break;
+  }
+  last_sensor_ = sensor.p;
+  last_axis_ = cut.axis;
+  cut.cell = cut.axis == 0 ? sensor_voxel.x : sensor_voxel.y;
+  counters_.scans_by_column += cut.axis == 0 ? 1U : 0U;
+
+  // 1. Clear the per-scan bits (each half its own, where its rays can reach; half 0's also
+  // cover the sensor's slice) and compute the rays, each part a half of them.
   both([&](int k) {
-    const std::size_t words = touched_.size(), w0 = k == 0 ? 0 : words / 2,
-                      w1 = k == 0 ? words / 2 : words;
-    std::fill(touched_.begin() + w0, touched_.begin() + w1, 0);
-    std::fill(ended_.begin() + w0, ended_.begin() + w1, 0);
-    prepare(sensor, scan, top_layers, k == 0 ? 0 : n / 2, k == 0 ? n / 2 : n, parts_[k]);
+    const int row = sensor_voxel.y;
+    if (cut.axis == 1) {
+      clear_bits(bits_[k], top_layers, k == 0 ? row - reach_ : row + 1,
+                 k == 0 ? row : row + reach_);
+    } else {
+      clear_bits(bits_[k], top_layers, row - reach_, row + reach_);
+    }
+    prepare(sensor, scan, top_layers, cut, k == 0 ? 0 : n / 2, k == 0 ? n / 2 : n, parts_[k]);
   });
-  // 2. The halves south and north of the sensor's row.
-  const int sensor_row = sensor_voxel.y;
-  both([&](int k) { trace_half(sensor.p, sensor_row, k == 0 ? -1 : 1, parts_[k]); });
-  // 3. The sensor's row: the rays that end in it, then the rest of those that reached it.
+  // 2. The halves on both sides of the sensor's slice.
+  both([&](int k) { trace_half(sensor.p, cut, k == 0 ? -1 : 1, parts_[k], bits_[k]); });
+  // 3. The slice: the rays that end in it, then the rest of those that reached it.
   Part& serial = parts_[0];
-  merge_and_hit(sensor_row, sensor_row, serial);
-  for (const Ray& ray : rays_) {
-    Runs runs;
-    if (ray.row == sensor_row && !ray.merged)
-      (void)trace(ray.end, sensor.p, true, ray.hit, runs, serial);
+  Bits& bits = bits_[0];
+  merge_and_hit(kSlice, serial, bits);
+  for (const Part& prepared : parts_) {
+    for (const std::uint32_t k : prepared.ends[kSlice]) {
+      Runs runs;
+      (void)trace(rays_[k].end, sensor.p, true, rays_[k].hit, runs, serial, bits);
+    }
   }
   for (int k = 0; k < 2; ++k) {
     const int side = k == 0 ? -1 : 1;
-    const double edge_y = row_edge_y(g, sensor_row, side) - side * kEdge_m;  // just inside the row
+    const double edge = slice_edge(g, cut.axis, cut.cell, side) - side * kEdge_m;  // inside
     for (const Part::Resume& r : parts_[static_cast<std::size_t>(k)].resume) {
       const Ray& ray = rays_[r.ray];
       Runs runs{r.unchanged, r.crossed};
-      (void)trace(point_at_y(ray.end, sensor.p, edge_y), sensor.p, false, false, runs, serial);
+      (void)trace(point_at(ray.end, sensor.p, cut.axis, edge), sensor.p, false, false, runs, serial,
+                  bits);
       ++counters_.rays_resumed;
     }
   }

@@ -12,8 +12,10 @@
 //
 // Two cores: rays ending south of the sensor's voxel row only cross voxels south of it or in
 // it (the same for north), so a scan is traced as two halves that touch disjoint voxels, each
-// up to the sensor's row, then the row itself. Given a ForkJoin the halves run at the same
-// time; the map is the same either way (tested), since the split never depends on it.
+// up to the sensor's row, then the row itself. The same works with the sensor's column (west
+// and east halves); by default the cut runs along the UAV's motion, so that both halves get
+// half of the new ground ahead. Given a ForkJoin the halves run at the same time; the map is
+// the same either way (tested), since the split never depends on it.
 #include <array>
 #include <cstdint>
 #include <limits>
@@ -24,6 +26,13 @@
 #include "colag/hal/lidar.hpp"
 
 namespace colag::uav {
+
+// How a scan is cut into two halves (see the top of the file).
+enum class MapperSplit : std::uint8_t {
+  kAlongMotion,  // by column when the sensor moved more along y than x since the last scan
+  kRows,         // south / north of the sensor's voxel row
+  kColumns,      // west / east of the sensor's voxel column
+};
 
 struct MapperConfig {
   double p_hit = 0.85;
@@ -42,6 +51,7 @@ struct MapperConfig {
   // already crossed. Huge values trace every ray fully.
   int early_stop_voxels = 10;
   int early_stop_crossed = 3;
+  MapperSplit split = MapperSplit::kAlongMotion;
 };
 
 enum class VoxelState : std::uint8_t { kUnknown, kFree, kOccupied };
@@ -50,10 +60,11 @@ struct MapperCounters {
   std::uint64_t scans = 0;
   std::uint64_t rays = 0;
   std::uint64_t voxel_updates = 0;
-  std::uint64_t voxel_visits = 0;  // voxels the traces stepped through (incl. early-stop runs)
-  std::uint64_t rays_outside = 0;  // sensor outside the grid, or non-finite points
-  std::uint64_t rays_merged = 0;   // ended in a voxel an earlier ray of the scan ended in
-  std::uint64_t rays_resumed = 0;  // back-traces finished in the sensor's row (see insert_scan)
+  std::uint64_t voxel_visits = 0;     // voxels the traces stepped through (incl. early-stop runs)
+  std::uint64_t rays_outside = 0;     // sensor outside the grid, or non-finite points
+  std::uint64_t rays_merged = 0;      // ended in a voxel an earlier ray of the scan ended in
+  std::uint64_t rays_resumed = 0;     // back-traces finished in the sensor's row or column
+  std::uint64_t scans_by_column = 0;  // scans cut into west and east halves
 };
 
 class Mapper {
@@ -82,30 +93,48 @@ class Mapper {
   struct Ray {
     Vec3 end = Vec3::Zero();  // world frame, cut at the maximum range and at the grid's edge
     std::uint32_t voxel = 0;  // linear index of the end voxel
-    std::int16_t row = -1;    // y index of the end voxel; -1: not a usable ray
     bool hit = false;         // ends on a return
-    bool merged = false;      // an earlier ray of the scan ended in the same voxel (not traced)
   };
-  // What one part of a scan's insertion did: the two halves south and north of the sensor's
-  // voxel row (part 0 also counts the serial work on the row itself).
+  // Where a ray ends, relative to the sensor's voxel slice (its row or column): it decides who
+  // traces it. Low: the lower indices (south or west).
+  enum End : std::uint8_t { kLow = 0, kHigh = 1, kSlice = 2 };
+  // The cut of the current scan: axis 0 (x) = by the sensor's column, 1 (y) = by its row.
+  struct Cut {
+    int axis = 1;
+    int cell = 0;  // the sensor's voxel index along the axis
+  };
+  // The per-scan bits of one half, one per voxel: updated in this scan, a ray of this scan
+  // ended here. 600 KB each, so they stay in cache while the rays of a scan cross the same
+  // voxels again and again. One set per half: the halves never write the same 64-bit word.
+  struct Bits {
+    std::array<std::uint64_t, (limits::kGridCells3d + 63) / 64> touched, ended;
+  };
+  // What one part of a scan's insertion did: each prepares half of the rays, then traces one
+  // half of the scan (part 0 also counts the serial work on the sensor's slice).
   struct alignas(64) Part {  // aligned: the two halves write their own Part at the same time
+    // The usable rays this part prepared, by End, in scan order (indices into rays_); merging
+    // drops the merged ones in place, leaving the rays to trace.
+    std::array<StaticVector<std::uint32_t, (limits::kMaxLidarPoints + 1) / 2>, 3> ends;
     struct Resume {
       std::uint32_t ray = 0;
       std::uint8_t unchanged = 0, crossed = 0;  // the early-stop runs where the ray stopped
     };
-    StaticVector<Resume, limits::kMaxLidarPoints> resume;  // rays that reached the sensor's row
+    StaticVector<Resume, limits::kMaxLidarPoints> resume;  // rays that reached the slice
     std::uint64_t rays_outside = 0, rays_merged = 0, voxel_updates = 0, voxel_visits = 0;
   };
   struct Runs {
     int unchanged = 0, crossed = 0;
   };
-  void prepare(const Pose3& sensor, const hal::LidarScanView& scan, int top_layers,
+  void prepare(const Pose3& sensor, const hal::LidarScanView& scan, int top_layers, Cut cut,
                std::size_t from, std::size_t to, Part& part);
-  // Merges the rays ending in `row_lo`..`row_hi` by end voxel and applies their hits.
-  void merge_and_hit(int row_lo, int row_hi, Part& part);
-  void trace_half(const Vec3& origin, int sensor_row, int side, Part& part);
+  // Clears the bits of the layers below `top_layers` that the rays of this scan can reach.
+  void clear_bits(Bits& bits, int top_layers, int row_lo, int row_hi) const;
+  // Merges the rays that end in `end` by end voxel and applies their hits.
+  void merge_and_hit(End end, Part& part, Bits& bits);
+  void trace_half(const Vec3& origin, Cut cut, int side, Part& part, Bits& bits);
   // Back-traces a->b (a is the ray's end side); false if an early stop ended it.
-  bool trace(const Vec3& a, const Vec3& b, bool first_is_end, bool hit, Runs& runs, Part& part);
+  bool trace(const Vec3& a, const Vec3& b, bool first_is_end, bool hit, Runs& runs, Part& part,
+             Bits& bits);
   // Sets voxel i's per-scan bit and adds `delta` to its log-odds, clamped to [lo, hi]; true if
   // the log-odds changed.
   static bool add_once(std::int8_t* logodds, std::uint64_t* touched, std::size_t i, int delta,
@@ -116,17 +145,15 @@ class Mapper {
 
   MapperConfig config_;
   ForkJoin* fork_join_;
-  bool halves_disjoint_;  // see the constructor
+  int reach_;  // voxels a ray can reach from the sensor's along x or y (max range + margin)
   std::int8_t hit_, miss_, min_, max_, occupied_;
   MapperCounters counters_;
   std::array<std::int8_t, limits::kGridCells3d> logodds_;
-  // One bit per voxel: updated in the current scan. 600 KB, so it stays in cache while the
-  // rays of a scan cross the same voxels again and again; cleared at every scan.
-  std::array<std::uint64_t, (limits::kGridCells3d + 63) / 64> touched_;
-  std::array<std::uint64_t, (limits::kGridCells3d + 63) / 64>
-      ended_;                                        // a ray of this scan ended here
+  std::array<Bits, 2> bits_;                         // half k's; the slice uses half 0's
   StaticVector<Ray, limits::kMaxLidarPoints> rays_;  // the scan being inserted
   std::array<Part, 2> parts_;
+  Vec3 last_sensor_ = Vec3::Zero();  // where the previous scan was taken
+  int last_axis_ = 1;
 };
 
 }  // namespace colag::uav
