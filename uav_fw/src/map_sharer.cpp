@@ -59,15 +59,23 @@ bool MapSharer::make_patch(const Mapper& map, const Vec2& position, double yaw, 
   const std::size_t n = static_cast<std::size_t>(cells_.width * cells_.height);
   std::fill_n(occupied_.begin(), n, false);
   std::fill_n(seen_low_.begin(), n, false);
+  // Branch-free inner loops on the raw log-odds (the compiler vectorises them): a sharing step
+  // reads ~17 000 voxels per UGV.
+  const std::int8_t unknown = map.raw_unknown(), occupied = map.raw_occupied();
   for (int z = z0 - 1; z < z1; ++z) {
     for (int y = 0; y < cells_.height; ++y) {
       const std::int8_t* row = map.row(lo.y + y, z) + lo.x;
       const std::size_t base = static_cast<std::size_t>(y * cells_.width);
-      for (int x = 0; x < cells_.width; ++x) {
-        const VoxelState s = map.state_of(row[x]);
-        const std::size_t c = base + static_cast<std::size_t>(x);
-        if (z <= z0) seen_low_[c] = seen_low_[c] || s != VoxelState::kUnknown;
-        if (z >= z0) occupied_[c] = occupied_[c] || s == VoxelState::kOccupied;
+      bool* seen = &seen_low_[base];
+      bool* occ = &occupied_[base];
+      const int w = cells_.width;
+      if (z <= z0) {
+        for (int x = 0; x < w; ++x)
+          seen[x] |= row[x] != unknown;
+      }
+      if (z >= z0) {
+        for (int x = 0; x < w; ++x)
+          occ[x] |= row[x] >= occupied;
       }
     }
   }

@@ -54,6 +54,7 @@ LidarSimulator::LidarSimulator(const LidarPattern& pattern, ForkJoin* fork_join)
     parts_[part].misses.reserve(n);
   }
   column_boxes_.resize(static_cast<std::size_t>(pattern.columns));
+  column_counts_.resize(static_cast<std::size_t>(pattern.columns));
   for (auto& c : column_boxes_)
     c.reserve(64);
 }
@@ -71,12 +72,14 @@ void LidarSimulator::scan(const BoxWorld& world, const Pose3& sensor,
   for (auto& c : column_boxes_)
     c.clear();
   const int cols = pattern_.columns;
+  double top = -std::numeric_limits<double>::infinity();  // of the boxes within range
   for (std::size_t i = 0; i < world.boxes.size(); ++i) {
     const Box& b = world.boxes[i];
     const Vec2 rel = b.center - sensor.p.head<2>();
     const double reach = b.half_size.norm();
     const double dist = rel.norm();
     if (dist - reach > range) continue;
+    top = std::max(top, b.height_m);
     int c0 = 0, c1 = cols - 1;
     if (dist > reach + 1e-6) {
       const double centre = std::atan2(rel.y(), rel.x()) - yaw;
@@ -89,33 +92,45 @@ void LidarSimulator::scan(const BoxWorld& world, const Pose3& sensor,
           static_cast<int>(i));
     }
   }
-  // Cast the two halves of the turn (at the same time when there is a fork-join), then join
-  // them in column order: the same scan either way.
+  // A beam that stays above every box within range cannot hit one: most of those pointing
+  // up or near level, from a UAV flying above the boxes.
+  const double above = sensor.p.z() - top;
+  const auto may_hit_a_box = [&](const Vec3& dir) {
+    return above <= 0.0 || -dir.z() * range >= above;
+  };
+  // Cast the turn in blocks of columns, even blocks in part 0 and odd ones in part 1 (at the
+  // same time when there is a fork-join: boxes crowd some directions, so halves of the turn
+  // would take unequal times), then join them in column order: the same scan either way.
   const auto cast = [&](int part) {
     auto& pts = parts_[static_cast<std::size_t>(part)].points;
     auto& mis = parts_[static_cast<std::size_t>(part)].misses;
     pts.clear();
     mis.clear();
-    const int c_begin = part == 0 ? 0 : cols / 2, c_end = part == 0 ? cols / 2 : cols;
-    for (int c = c_begin; c < c_end; ++c) {
-      const auto& candidates = column_boxes_[static_cast<std::size_t>(c)];
-      for (int b = 0; b < pattern_.beams; ++b) {
-        const Vec3& local = directions_[static_cast<std::size_t>(c * pattern_.beams + b)];
-        const Vec3 dir = R * local;
-        double t = std::numeric_limits<double>::infinity();
-        if (dir.z() < -1e-9) t = -sensor.p.z() / dir.z();  // the ground
-        if (!candidates.empty()) {
-          const BoxRay ray(sensor.p, dir);
-          for (const int i : candidates) {
-            const double tb = ray_box(ray, world.boxes[static_cast<std::size_t>(i)]);
-            if (tb >= 0.0 && tb < t) t = tb;
+    for (int c0 = part * kBlock; c0 < cols; c0 += 2 * kBlock) {
+      for (int c = c0; c < std::min(c0 + kBlock, cols); ++c) {
+        const auto& candidates = column_boxes_[static_cast<std::size_t>(c)];
+        const std::size_t pts0 = pts.size(), mis0 = mis.size();
+        for (int b = 0; b < pattern_.beams; ++b) {
+          const Vec3& local = directions_[static_cast<std::size_t>(c * pattern_.beams + b)];
+          const Vec3 dir = R * local;
+          double t = std::numeric_limits<double>::infinity();
+          if (dir.z() < -1e-9) t = -sensor.p.z() / dir.z();  // the ground
+          if (!candidates.empty() && may_hit_a_box(dir)) {
+            const BoxRay ray(sensor.p, dir);
+            for (const int i : candidates) {
+              const double tb = ray_box(ray, world.boxes[static_cast<std::size_t>(i)]);
+              if (tb >= 0.0 && tb < t) t = tb;
+            }
           }
+          if (t < pattern_.min_range_m) continue;  // too close: the sensor reports nothing
+          const Vec3 end = local * std::min(t, range);
+          const hal::LidarPoint p{static_cast<float>(end.x()), static_cast<float>(end.y()),
+                                  static_cast<float>(end.z())};
+          (t <= range ? pts : mis).push_back(p);
         }
-        if (t < pattern_.min_range_m) continue;  // too close: the sensor reports nothing
-        const Vec3 end = local * std::min(t, range);
-        const hal::LidarPoint p{static_cast<float>(end.x()), static_cast<float>(end.y()),
-                                static_cast<float>(end.z())};
-        (t <= range ? pts : mis).push_back(p);
+        column_counts_[static_cast<std::size_t>(c)] = {
+            static_cast<std::uint16_t>(pts.size() - pts0),
+            static_cast<std::uint16_t>(mis.size() - mis0)};
       }
     }
   };
@@ -125,9 +140,17 @@ void LidarSimulator::scan(const BoxWorld& world, const Pose3& sensor,
     cast(0);
     cast(1);
   }
-  for (std::size_t part = 0; part < 2; ++part) {
-    points_.insert(points_.end(), parts_[part].points.begin(), parts_[part].points.end());
-    misses_.insert(misses_.end(), parts_[part].misses.begin(), parts_[part].misses.end());
+  std::array<std::size_t, 2> next_point{}, next_miss{};
+  for (int c = 0; c < cols; ++c) {
+    const std::size_t part = static_cast<std::size_t>((c / kBlock) % 2);
+    const auto [n_points, n_misses] = column_counts_[static_cast<std::size_t>(c)];
+    const auto& from = parts_[part];
+    const auto p0 = from.points.begin() + static_cast<std::ptrdiff_t>(next_point[part]);
+    const auto m0 = from.misses.begin() + static_cast<std::ptrdiff_t>(next_miss[part]);
+    points_.insert(points_.end(), p0, p0 + n_points);
+    misses_.insert(misses_.end(), m0, m0 + n_misses);
+    next_point[part] += n_points;
+    next_miss[part] += n_misses;
   }
   points = points_;
   misses = misses_;

@@ -84,6 +84,10 @@ class Mapper {
     return raw == kUnknown ? VoxelState::kUnknown
                            : (raw >= occupied_ ? VoxelState::kOccupied : VoxelState::kFree);
   }
+  // The raw values behind state_of, for vectorised scans of rows: unknown, and the lowest
+  // occupied (every raw value at or above it is occupied, every other known one free).
+  static constexpr std::int8_t raw_unknown() { return kUnknown; }
+  std::int8_t raw_occupied() const { return occupied_; }
   VoxelState state(const Vec3& p) const { return state(geometry().voxel_of(p)); }
   bool observed(VoxelIndex v) const { return state(v) != VoxelState::kUnknown; }
   const MapperCounters& counters() const { return counters_; }

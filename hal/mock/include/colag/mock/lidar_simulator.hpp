@@ -6,6 +6,7 @@
 // can clear free space along them). Boxes are culled per scan by range and azimuth, so a ray
 // is tested only against the few boxes in its direction.
 #include <array>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -45,6 +46,11 @@ class LidarSimulator {
   };
   std::array<Part, 2> parts_;
   std::vector<std::vector<int>> column_boxes_;  // per column: boxes that may be hit
+  struct ColumnCount {
+    std::uint16_t points = 0, misses = 0;
+  };
+  std::vector<ColumnCount> column_counts_;  // per column, of the last scan
+  static constexpr int kBlock = 16;         // columns cast together by one part
 };
 
 // A ray set up for testing against many boxes: the inverse of its direction per axis, so a
