@@ -68,7 +68,9 @@ void LidarSimulator::scan(const BoxWorld& world, const Pose3& sensor,
   const Mat3 R = sensor.q.toRotationMatrix();
   const double yaw = yaw_of(sensor.q);
   // Cull: boxes within range, entered in every column their azimuth span covers (in the
-  // sensor's heading frame; the sensor is assumed near level, as on a hovering UAV).
+  // sensor's heading frame). Only for a level sensor: tilted, a beam's azimuth in the world
+  // depends on its elevation too, so every box within range is tested in every column.
+  const bool level = R(2, 2) >= 1.0 - 1e-12;
   for (auto& c : column_boxes_)
     c.clear();
   const int cols = pattern_.columns;
@@ -81,7 +83,7 @@ void LidarSimulator::scan(const BoxWorld& world, const Pose3& sensor,
     if (dist - reach > range) continue;
     top = std::max(top, b.height_m);
     int c0 = 0, c1 = cols - 1;
-    if (dist > reach + 1e-6) {
+    if (level && dist > reach + 1e-6) {
       const double centre = std::atan2(rel.y(), rel.x()) - yaw;
       const double half = std::asin(std::min(1.0, reach / dist)) + 2.0 * M_PI / cols;
       c0 = static_cast<int>(std::floor((centre - half) / (2.0 * M_PI) * cols));

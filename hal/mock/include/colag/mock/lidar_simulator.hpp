@@ -3,8 +3,8 @@
 // 1.2 deg steps, 360 deg in `columns` steps, 8 m range, returns closer than 1 m dropped), ray
 // cast against the box world and the ground plane z = 0. Returns are reported in the sensor
 // frame; beams with no return within range are reported as misses at max range (so the mapper
-// can clear free space along them). Boxes are culled per scan by range and azimuth, so a ray
-// is tested only against the few boxes in its direction.
+// can clear free space along them). Boxes are culled per scan by range and (for a level
+// sensor) azimuth, so a ray is tested only against the few boxes in its direction.
 #include <array>
 #include <cstdint>
 #include <span>
