@@ -66,7 +66,16 @@ class MapStore {
   const MapStoreCounters& counters() const { return counters_; }
 
  private:
-  using Disc = StaticVector<CellIndex, (2 * kMaxInflationCells + 3) * (2 * kMaxInflationCells + 3)>;
+  // A disc of cells as one span of columns per row (dx0..dx1 at dy), so that stamping it adds
+  // along contiguous memory.
+  struct DiscRow {
+    int dy, dx0, dx1;
+  };
+  struct Disc {
+    StaticVector<DiscRow, 2 * kMaxInflationCells + 3> rows;
+    int cells = 0;
+    int reach = 0;  // largest |dx| or |dy|
+  };
   using Counts = std::array<std::uint16_t, limits::kGridCells2d>;
   static void make_disc(double radius_m, Disc& out);
   void stamp(CellIndex c, const Disc& disc, Counts& counts, int delta);
