@@ -148,7 +148,18 @@ bool Planner::search(CellIndex start, CellIndex goal) {
 }
 
 bool Planner::line_of_sight(const Vec2& a, const Vec2& b) const {
-  return !any_cell_on_segment(geometry(), a, b, [&](CellIndex c) { return blocked(c); });
+  const auto& g = geometry();
+  // The traversal stays within the box of the two end cells, give or take one cell where
+  // rounding lets it step past b's cell: with both end cells a cell inside the grid, every
+  // visited cell is in the grid, and the hot loop needs no bounds check (it runs ~80 times per
+  // replanning, along the whole path).
+  const auto well_inside = [&](CellIndex c) {
+    return c.x >= 1 && c.y >= 1 && c.x < g.cells_x() - 1 && c.y < g.cells_y() - 1;
+  };
+  if (well_inside(g.cell_of(a)) && well_inside(g.cell_of(b))) {
+    return !any_cell_on_segment(g, a, b, [&](CellIndex c) { return blocked(g.index(c)); });
+  }
+  return !any_cell_on_segment(g, a, b, [&](CellIndex c) { return blocked(c); });
 }
 
 void Planner::smooth(const Vec2& start, const Vec2& goal, Path& out) {

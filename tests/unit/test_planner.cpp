@@ -6,6 +6,7 @@
 
 #include "colag/common/grid_line.hpp"
 #include "colag/common/planner.hpp"
+#include "colag/common/random.hpp"
 #include "colag/ugv/trajectory.hpp"
 #include "map_fixtures.hpp"
 
@@ -171,4 +172,35 @@ TEST(Trajectory, StartsAtTheCurrentSpeedAndTurnsOnTheSpotAtAReversal) {
     if ((traj[i].p - Vec2(2, 0)).norm() < 1e-6) stopped_at_corner = traj[i].v_mps == 0.0;
   }
   EXPECT_TRUE(stopped_at_corner);
+}
+
+// Planner::line_of_sight skips the bounds check when both end cells are a cell inside the grid,
+// relying on this: the traversal never visits a cell more than one cell outside the box of the
+// two end cells. Random segments, many ending exactly on cell boundaries and corners (where
+// rounding may step past b's cell), all over the grid.
+TEST(GridLine, StaysWithinACellOfTheBoxOfItsEndCells) {
+  const GridGeometry2d& g = kWorldGrid2d;
+  Rng rng(11);
+  const auto random_point = [&] {
+    Vec2 p(rng.uniform(-19.5, 19.5), rng.uniform(-19.5, 19.5));
+    if (rng.uniform() < 0.5) p.x() = g.origin_x() + 0.1 * std::round((p.x() - g.origin_x()) / 0.1);
+    if (rng.uniform() < 0.5) p.y() = g.origin_y() + 0.1 * std::round((p.y() - g.origin_y()) / 0.1);
+    return p;
+  };
+  int worst = 0;
+  for (int k = 0; k < 20000; ++k) {
+    const Vec2 a = random_point();
+    const Vec2 b = rng.uniform() < 0.2 ? a + 0.1 * Vec2(static_cast<double>(rng.below(5)),
+                                                        static_cast<double>(rng.below(5)))
+                                       : random_point();
+    const CellIndex ca = g.cell_of(a), cb = g.cell_of(b);
+    (void)any_cell_on_segment(g, a, b, [&](CellIndex c) {
+      const int out_x = std::max({0, std::min(ca.x, cb.x) - c.x, c.x - std::max(ca.x, cb.x)});
+      const int out_y = std::max({0, std::min(ca.y, cb.y) - c.y, c.y - std::max(ca.y, cb.y)});
+      worst = std::max({worst, out_x, out_y});
+      return false;
+    });
+  }
+  RecordProperty("worst_cells_outside", worst);
+  EXPECT_LE(worst, 1);
 }
