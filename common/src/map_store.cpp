@@ -5,6 +5,17 @@
 
 namespace colag {
 
+template <class F>
+void MapStore::each_span(CellIndex c, const Disc& disc, F&& f) const {
+  const auto& g = geometry();
+  for (const DiscRow& r : disc.rows) {
+    const int y = c.y + r.dy;
+    if (y < 0 || y >= g.cells_y()) continue;
+    const int x0 = std::max(c.x + r.dx0, 0), x1 = std::min(c.x + r.dx1, g.cells_x() - 1);
+    if (x0 <= x1) f(g.index(CellIndex{x0, y}), x1 - x0 + 1);
+  }
+}
+
 MapStore::MapStore(const MapStoreConfig& config) : config_(config) {
   make_disc(config_.plan_inflation_m, plan_disc_);
   make_disc(config_.predict_inflation_m, predict_disc_);
@@ -23,10 +34,7 @@ MapStore::MapStore(const MapStoreConfig& config) : config_(config) {
     for (int x = 0; x < g.cells_x(); ++x) {
       if (!edge_row && x >= reach && x < g.cells_x() - reach) continue;
       int inside = 0;
-      for (const DiscRow& r : predict_disc_.rows) {
-        if (y + r.dy < 0 || y + r.dy >= g.cells_y()) continue;
-        inside += std::max(0, std::min(x + r.dx1, g.cells_x() - 1) - std::max(x + r.dx0, 0) + 1);
-      }
+      each_span({x, y}, predict_disc_, [&](std::size_t, int cells) { inside += cells; });
       near_unknown_[g.index(CellIndex{x, y})] = static_cast<std::uint16_t>(inside);
     }
   }
@@ -54,22 +62,16 @@ void MapStore::make_disc(double radius_m, Disc& out) {
 }
 
 void MapStore::stamp(CellIndex c, const Disc& disc, Counts& counts, int delta) {
-  const auto& g = geometry();
-  const bool count_blocked = &counts == &plan_count_ && delta > 0;
-  for (const DiscRow& r : disc.rows) {
-    const int y = c.y + r.dy;
-    if (y < 0 || y >= g.cells_y()) continue;
-    const int x0 = std::max(c.x + r.dx0, 0), x1 = std::min(c.x + r.dx1, g.cells_x() - 1);
-    if (x0 > x1) continue;
-    std::uint16_t* row = &counts[g.index(CellIndex{x0, y})];
-    const int n = x1 - x0 + 1;
-    int newly = 0;
-    for (int i = 0; i < n; ++i) {
+  int newly = 0;  // counts that became 1
+  each_span(c, disc, [&](std::size_t first, int cells) {
+    std::uint16_t* row = &counts[first];
+    for (int i = 0; i < cells; ++i) {
       row[i] = static_cast<std::uint16_t>(row[i] + delta);
       newly += row[i] == 1 ? 1 : 0;
     }
-    if (count_blocked) counters_.plan_cells_blocked += static_cast<std::uint64_t>(newly);
-  }
+  });
+  if (&counts == &plan_count_ && delta > 0)
+    counters_.plan_cells_blocked += static_cast<std::uint64_t>(newly);
 }
 
 void MapStore::set_cell(CellIndex c, CellState s) {

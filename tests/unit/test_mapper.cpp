@@ -59,6 +59,35 @@ std::vector<Pose3> straight_flight() {
   return poses;
 }
 
+// How map `a` differs from `reference` (two maps of the same scans) in layers [z0, z1).
+struct MapDiff {
+  std::size_t observed = 0;         // voxels the reference observed
+  std::size_t a_observed = 0;       // voxels `a` observed
+  std::size_t differ = 0;           // voxels in a different state
+  std::size_t occupied_differ = 0;  // occupied in one map only
+  std::size_t false_free = 0;       // free in `a` but not in the reference
+  double share() const { return static_cast<double>(differ) / static_cast<double>(observed); }
+};
+MapDiff compare_maps(const Mapper& a, const Mapper& reference, int z0 = 0,
+                     int z1 = kWorldGrid3d.cells_z()) {
+  const auto& g = a.geometry();
+  MapDiff d;
+  for (int z = z0; z < z1; ++z) {
+    for (int y = 0; y < g.cells_y(); ++y) {
+      for (int x = 0; x < g.cells_x(); ++x) {
+        const VoxelState sa = a.state(VoxelIndex{x, y, z});
+        const VoxelState sr = reference.state(VoxelIndex{x, y, z});
+        d.observed += sr != VoxelState::kUnknown;
+        d.a_observed += sa != VoxelState::kUnknown;
+        d.differ += sa != sr;
+        d.occupied_differ += (sa == VoxelState::kOccupied) != (sr == VoxelState::kOccupied);
+        d.false_free += sa == VoxelState::kFree && sr != VoxelState::kFree;
+      }
+    }
+  }
+  return d;
+}
+
 }  // namespace
 
 TEST(VoxelTraversal, VisitsExactlyTheVoxelsASamplerFinds) {
@@ -180,22 +209,10 @@ TEST(Mapper, EarlyStopNeverAddsFreeSpaceAndAgreesWithFullTracing) {
   auto fast = std::make_unique<Mapper>();
   auto full = std::make_unique<Mapper>(full_cfg);
   scan_dense_map(straight_flight(), {fast.get(), full.get()});
-  const auto& g = fast->geometry();
-  std::size_t observed = 0, differ = 0, false_free = 0;
-  for (int z = 0; z < g.cells_z(); ++z) {
-    for (int y = 0; y < g.cells_y(); ++y) {
-      for (int x = 0; x < g.cells_x(); ++x) {
-        const VoxelState a = fast->state(VoxelIndex{x, y, z}), b = full->state(VoxelIndex{x, y, z});
-        observed += b != VoxelState::kUnknown;
-        differ += a != b;
-        false_free += a == VoxelState::kFree && b != VoxelState::kFree;
-      }
-    }
-  }
-  EXPECT_EQ(false_free, 0u);
-  const double share = static_cast<double>(differ) / static_cast<double>(observed);
-  RecordProperty("differ_share", std::to_string(share));
-  EXPECT_LT(share, 0.03);
+  const MapDiff d = compare_maps(*fast, *full);
+  EXPECT_EQ(d.false_free, 0u);
+  RecordProperty("differ_share", std::to_string(d.share()));
+  EXPECT_LT(d.share(), 0.03);
   EXPECT_LT(fast->counters().voxel_visits * 3, full->counters().voxel_visits);
 }
 
@@ -208,27 +225,11 @@ TEST(Mapper, CeilingLeavesTheLayersAboveUnknownAndMapsThoseBelowTheSame) {
   auto capped = std::make_unique<Mapper>(capped_cfg);
   auto open = std::make_unique<Mapper>();
   scan_dense_map(straight_flight(), {capped.get(), open.get()});
-  const auto& g = capped->geometry();
-  std::size_t above = 0, observed = 0, differ = 0, occupied_differ = 0;
-  for (int z = 0; z < g.cells_z(); ++z) {
-    for (int y = 0; y < g.cells_y(); ++y) {
-      for (int x = 0; x < g.cells_x(); ++x) {
-        const VoxelState a = capped->state(VoxelIndex{x, y, z});
-        const VoxelState b = open->state(VoxelIndex{x, y, z});
-        if (z >= 15) {
-          above += a != VoxelState::kUnknown;
-          continue;
-        }
-        observed += b != VoxelState::kUnknown;
-        differ += a != b;
-        occupied_differ += (a == VoxelState::kOccupied) != (b == VoxelState::kOccupied);
-      }
-    }
-  }
-  EXPECT_EQ(above, 0u);
-  EXPECT_GT(observed, 100000u);
-  EXPECT_EQ(occupied_differ, 0u);
-  EXPECT_LT(static_cast<double>(differ) / static_cast<double>(observed), 0.01);
+  EXPECT_EQ(compare_maps(*capped, *open, 15).a_observed, 0u);  // nothing above the ceiling
+  const MapDiff below = compare_maps(*capped, *open, 0, 15);
+  EXPECT_GT(below.observed, 100000u);
+  EXPECT_EQ(below.occupied_differ, 0u);
+  EXPECT_LT(below.share(), 0.01);
   EXPECT_LT(capped->counters().voxel_visits, open->counters().voxel_visits);
 
   // Flying at 2.05 m, above the 1.5 m ceiling: the sensor's own layer is still mapped.
@@ -248,27 +249,14 @@ TEST(Mapper, RowAndColumnCutsMapTheSameObstacles) {
   auto columns = std::make_unique<Mapper>(columns_cfg);
   auto along = std::make_unique<Mapper>();
   scan_dense_map(straight_flight(), {rows.get(), columns.get(), along.get()});
-  const auto& g = rows->geometry();
-  std::size_t observed = 0, differ = 0, occupied_differ = 0, along_differ = 0;
-  for (int z = 0; z < g.cells_z(); ++z) {
-    for (int y = 0; y < g.cells_y(); ++y) {
-      for (int x = 0; x < g.cells_x(); ++x) {
-        const VoxelIndex v{x, y, z};
-        const VoxelState a = rows->state(v), b = columns->state(v);
-        observed += a != VoxelState::kUnknown;
-        differ += a != b;
-        occupied_differ += (a == VoxelState::kOccupied) != (b == VoxelState::kOccupied);
-        along_differ += along->state(v) != b;
-      }
-    }
-  }
-  EXPECT_GT(observed, 100000u);
-  EXPECT_EQ(occupied_differ, 0u);
-  EXPECT_LT(static_cast<double>(differ) / static_cast<double>(observed), 0.01);
+  const MapDiff d = compare_maps(*columns, *rows);
+  EXPECT_GT(d.observed, 100000u);
+  EXPECT_EQ(d.occupied_differ, 0u);
+  EXPECT_LT(d.share(), 0.01);
   EXPECT_EQ(rows->counters().scans_by_column, 0u);
   EXPECT_EQ(columns->counters().scans_by_column, 40u);
   EXPECT_EQ(along->counters().scans_by_column, 40u);
-  EXPECT_EQ(along_differ, 0u);
+  EXPECT_EQ(compare_maps(*along, *columns).differ, 0u);
 }
 
 // The halves of a scan touch disjoint voxels, so running them on two threads must give the very

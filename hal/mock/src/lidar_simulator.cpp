@@ -55,6 +55,7 @@ LidarSimulator::LidarSimulator(const LidarPattern& pattern, ForkJoin* fork_join)
   }
   column_boxes_.resize(static_cast<std::size_t>(pattern.columns));
   column_counts_.resize(static_cast<std::size_t>(pattern.columns));
+  in_range_.reserve(256);
   for (auto& c : column_boxes_)
     c.reserve(64);
 }
@@ -69,10 +70,11 @@ void LidarSimulator::scan(const BoxWorld& world, const Pose3& sensor,
   const double yaw = yaw_of(sensor.q);
   // Cull: boxes within range, entered in every column their azimuth span covers (in the
   // sensor's heading frame). Only for a level sensor: tilted, a beam's azimuth in the world
-  // depends on its elevation too, so every box within range is tested in every column.
+  // depends on its elevation too, so every column tests every box within range.
   const bool level = R(2, 2) >= 1.0 - 1e-12;
   for (auto& c : column_boxes_)
     c.clear();
+  in_range_.clear();
   const int cols = pattern_.columns;
   double top = -std::numeric_limits<double>::infinity();  // of the boxes within range
   for (std::size_t i = 0; i < world.boxes.size(); ++i) {
@@ -82,8 +84,10 @@ void LidarSimulator::scan(const BoxWorld& world, const Pose3& sensor,
     const double dist = rel.norm();
     if (dist - reach > range) continue;
     top = std::max(top, b.height_m);
+    in_range_.push_back(static_cast<int>(i));
+    if (!level) continue;
     int c0 = 0, c1 = cols - 1;
-    if (level && dist > reach + 1e-6) {
+    if (dist > reach + 1e-6) {
       const double centre = std::atan2(rel.y(), rel.x()) - yaw;
       const double half = std::asin(std::min(1.0, reach / dist)) + 2.0 * M_PI / cols;
       c0 = static_cast<int>(std::floor((centre - half) / (2.0 * M_PI) * cols));
@@ -110,7 +114,7 @@ void LidarSimulator::scan(const BoxWorld& world, const Pose3& sensor,
     mis.clear();
     for (int c0 = part * kBlock; c0 < cols; c0 += 2 * kBlock) {
       for (int c = c0; c < std::min(c0 + kBlock, cols); ++c) {
-        const auto& candidates = column_boxes_[static_cast<std::size_t>(c)];
+        const auto& candidates = level ? column_boxes_[static_cast<std::size_t>(c)] : in_range_;
         const std::size_t pts0 = pts.size(), mis0 = mis.size();
         for (int b = 0; b < pattern_.beams; ++b) {
           const Vec3& local = directions_[static_cast<std::size_t>(c * pattern_.beams + b)];

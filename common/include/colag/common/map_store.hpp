@@ -78,6 +78,10 @@ class MapStore {
   };
   using Counts = std::array<std::uint16_t, limits::kGridCells2d>;
   static void make_disc(double radius_m, Disc& out);
+  // Calls f(first cell's index, cells) for each row span of `disc` centred on c, clipped to
+  // the grid.
+  template <class F>
+  void each_span(CellIndex c, const Disc& disc, F&& f) const;
   void stamp(CellIndex c, const Disc& disc, Counts& counts, int delta);
   void set_cell(CellIndex c, CellState s);
 

@@ -45,7 +45,8 @@ class LidarSimulator {
     std::vector<hal::LidarPoint> points, misses;
   };
   std::array<Part, 2> parts_;
-  std::vector<std::vector<int>> column_boxes_;  // per column: boxes that may be hit
+  std::vector<std::vector<int>> column_boxes_;  // per column: boxes that may be hit (level)
+  std::vector<int> in_range_;                   // boxes within range (every column, tilted)
   struct ColumnCount {
     std::uint16_t points = 0, misses = 0;
   };
