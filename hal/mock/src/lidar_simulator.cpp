@@ -40,6 +40,7 @@ LidarSimulator::LidarSimulator(const LidarPattern& pattern, ForkJoin* fork_join)
   directions_.reserve(n);
   for (int c = 0; c < pattern.columns; ++c) {
     const double az = 2.0 * M_PI * c / pattern.columns;
+    azimuths_.emplace_back(std::cos(az), std::sin(az));
     for (int b = 0; b < pattern.beams; ++b) {
       const double el =
           (pattern.lowest_elevation_deg + b * pattern.elevation_step_deg) * M_PI / 180.0;
@@ -47,11 +48,20 @@ LidarSimulator::LidarSimulator(const LidarPattern& pattern, ForkJoin* fork_join)
                                std::sin(el));
     }
   }
+  for (int b = 0; b < pattern.beams; ++b) {
+    const double el =
+        (pattern.lowest_elevation_deg + b * pattern.elevation_step_deg) * M_PI / 180.0;
+    const double tan = std::tan(el);
+    // Within 1e-12 of level counts as level, as a 3-D slab test treats a parallel axis.
+    elevations_.push_back(
+        {1.0 / std::cos(el), std::abs(tan) < 1e-12 ? 0.0 : 1.0 / tan, std::sin(el)});
+  }
   points_.reserve(n);
   misses_.reserve(n);
   for (std::size_t part = 0; part < 2; ++part) {
     parts_[part].points.reserve(n);
     parts_[part].misses.reserve(n);
+    parts_[part].stretches.reserve(256);
   }
   column_boxes_.resize(static_cast<std::size_t>(pattern.columns));
   column_counts_.resize(static_cast<std::size_t>(pattern.columns));
@@ -104,24 +114,72 @@ void LidarSimulator::scan(const BoxWorld& world, const Pose3& sensor,
   const auto may_hit_a_box = [&](const Vec3& dir) {
     return above <= 0.0 || -dir.z() * range >= above;
   };
+  // A level sensor: each candidate box cut to the stretch [s0, s1] of horizontal distance
+  // along the column's direction `h` that lies over its footprint (none if it misses or lies
+  // beyond range: a beam goes at least as far as its horizontal distance).
+  const Vec3& p = sensor.p;
+  const auto cut_to_column = [&](const Vec2& h, const std::vector<int>& candidates,
+                                 std::vector<Stretch>& out) {
+    out.clear();
+    for (const int i : candidates) {
+      const Box& b = world.boxes[static_cast<std::size_t>(i)];
+      double s0 = 0.0, s1 = range;
+      for (int a = 0; a < 2; ++a) {
+        const double lo = b.center[a] - b.half_size[a], hi = b.center[a] + b.half_size[a];
+        if (std::abs(h[a]) < 1e-12) {
+          if (p[a] < lo || p[a] > hi) s1 = -1.0;
+          continue;
+        }
+        const double inv = 1.0 / h[a];
+        const double sa = (lo - p[a]) * inv, sb = (hi - p[a]) * inv;
+        s0 = std::max(s0, std::min(sa, sb));
+        s1 = std::min(s1, std::max(sa, sb));
+      }
+      if (s0 <= s1) out.push_back({s0, s1, b.height_m});
+    }
+  };
+  // The nearest box a beam of elevation `e` hits within the column's stretches, as a distance
+  // along the beam (infinity if none): where its height is within the box's over the stretch.
+  const auto nearest_box = [&](const Elevation& e, const std::vector<Stretch>& stretches) {
+    double t = std::numeric_limits<double>::infinity();
+    for (const Stretch& st : stretches) {
+      double s0 = st.s0, s1 = st.s1;
+      if (e.inv_tan == 0.0) {
+        if (p.z() < 0.0 || p.z() > st.height) continue;
+      } else {
+        const double sa = -p.z() * e.inv_tan, sb = (st.height - p.z()) * e.inv_tan;
+        s0 = std::max(s0, std::min(sa, sb));
+        s1 = std::min(s1, std::max(sa, sb));
+      }
+      if (s0 <= s1) t = std::min(t, s0 * e.inv_cos);
+    }
+    return t;
+  };
   // Cast the turn in blocks of columns, even blocks in part 0 and odd ones in part 1 (at the
   // same time when there is a fork-join: boxes crowd some directions, so halves of the turn
   // would take unequal times), then join them in column order: the same scan either way.
   const auto cast = [&](int part) {
-    auto& pts = parts_[static_cast<std::size_t>(part)].points;
-    auto& mis = parts_[static_cast<std::size_t>(part)].misses;
+    auto& [pts, mis, stretches] = parts_[static_cast<std::size_t>(part)];
     pts.clear();
     mis.clear();
     for (int c0 = part * kBlock; c0 < cols; c0 += 2 * kBlock) {
       for (int c = c0; c < std::min(c0 + kBlock, cols); ++c) {
         const auto& candidates = level ? column_boxes_[static_cast<std::size_t>(c)] : in_range_;
+        if (level) {
+          const Vec2& az = azimuths_[static_cast<std::size_t>(c)];
+          cut_to_column(R.topLeftCorner<2, 2>() * az, candidates, stretches);
+        }
         const std::size_t pts0 = pts.size(), mis0 = mis.size();
         for (int b = 0; b < pattern_.beams; ++b) {
           const Vec3& local = directions_[static_cast<std::size_t>(c * pattern_.beams + b)];
           const Vec3 dir = R * local;
           double t = std::numeric_limits<double>::infinity();
           if (dir.z() < -1e-9) t = -sensor.p.z() / dir.z();  // the ground
-          if (!candidates.empty() && may_hit_a_box(dir)) {
+          if (level) {
+            if (!stretches.empty() && may_hit_a_box(dir)) {
+              t = std::min(t, nearest_box(elevations_[static_cast<std::size_t>(b)], stretches));
+            }
+          } else if (!candidates.empty() && may_hit_a_box(dir)) {
             const BoxRay ray(sensor.p, dir);
             for (const int i : candidates) {
               const double tb = ray_box(ray, world.boxes[static_cast<std::size_t>(i)]);
@@ -130,9 +188,9 @@ void LidarSimulator::scan(const BoxWorld& world, const Pose3& sensor,
           }
           if (t < pattern_.min_range_m) continue;  // too close: the sensor reports nothing
           const Vec3 end = local * std::min(t, range);
-          const hal::LidarPoint p{static_cast<float>(end.x()), static_cast<float>(end.y()),
-                                  static_cast<float>(end.z())};
-          (t <= range ? pts : mis).push_back(p);
+          (t <= range ? pts : mis)
+              .push_back({static_cast<float>(end.x()), static_cast<float>(end.y()),
+                          static_cast<float>(end.z())});
         }
         column_counts_[static_cast<std::size_t>(c)] = {
             static_cast<std::uint16_t>(pts.size() - pts0),

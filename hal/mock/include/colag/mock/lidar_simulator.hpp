@@ -4,7 +4,8 @@
 // cast against the box world and the ground plane z = 0. Returns are reported in the sensor
 // frame; beams with no return within range are reported as misses at max range (so the mapper
 // can clear free space along them). Boxes are culled per scan by range and (for a level
-// sensor) azimuth, so a ray is tested only against the few boxes in its direction.
+// sensor) azimuth, so a ray is tested only against the few boxes in its direction; a level
+// sensor also cuts each of those boxes to its column once, for all the column's beams.
 #include <array>
 #include <cstdint>
 #include <span>
@@ -40,9 +41,21 @@ class LidarSimulator {
   LidarPattern pattern_;
   ForkJoin* fork_join_;
   std::vector<Vec3> directions_;  // unit vectors in the sensor frame, column-major
+  // A level sensor's beams share their column's horizontal direction (azimuth, per column) and
+  // their elevation (per beam): a box is cut to the stretch of horizontal distance the column
+  // crosses it over once per column, then each beam only checks its height over that stretch.
+  std::vector<Vec2> azimuths_;  // (cos, sin) per column, sensor frame
+  struct Elevation {
+    double inv_cos, inv_tan, sin;  // inv_tan is 0 for a level beam
+  };
+  std::vector<Elevation> elevations_;  // per beam
+  struct Stretch {                     // where a column's horizontal line crosses a box's footprint
+    double s0, s1, height;
+  };
   std::vector<hal::LidarPoint> points_, misses_;
   struct alignas(64) Part {  // one cache line each: the two parts push at the same time
     std::vector<hal::LidarPoint> points, misses;
+    std::vector<Stretch> stretches;  // of the column being cast (level sensor)
   };
   std::array<Part, 2> parts_;
   std::vector<std::vector<int>> column_boxes_;  // per column: boxes that may be hit (level)
