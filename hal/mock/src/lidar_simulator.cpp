@@ -63,6 +63,7 @@ LidarSimulator::LidarSimulator(const LidarPattern& pattern, ForkJoin* fork_join)
     parts_[part].misses.reserve(n);
     parts_[part].stretches.reserve(256);
   }
+  level_beams_.resize(static_cast<std::size_t>(pattern.beams));
   column_boxes_.resize(static_cast<std::size_t>(pattern.columns));
   column_counts_.resize(static_cast<std::size_t>(pattern.columns));
   in_range_.reserve(256);
@@ -79,9 +80,10 @@ void LidarSimulator::scan(const BoxWorld& world, const Pose3& sensor,
   const Mat3 R = sensor.q.toRotationMatrix();
   const double yaw = yaw_of(sensor.q);
   // Cull: boxes within range, entered in every column their azimuth span covers (in the
-  // sensor's heading frame). Only for a level sensor: tilted, a beam's azimuth in the world
-  // depends on its elevation too, so every column tests every box within range.
-  const bool level = R(2, 2) >= 1.0 - 1e-12;
+  // sensor's heading frame). Only for a level sensor (exactly: no roll, no pitch): tilted, a
+  // beam's azimuth in the world depends on its elevation too, so every column tests every box
+  // within range.
+  const bool level = R(2, 0) == 0.0 && R(2, 1) == 0.0;
   for (auto& c : column_boxes_)
     c.clear();
   in_range_.clear();
@@ -111,9 +113,18 @@ void LidarSimulator::scan(const BoxWorld& world, const Pose3& sensor,
   // A beam that stays above every box within range cannot hit one: most of those pointing
   // up or near level, from a UAV flying above the boxes.
   const double above = sensor.p.z() - top;
-  const auto may_hit_a_box = [&](const Vec3& dir) {
-    return above <= 0.0 || -dir.z() * range >= above;
+  const auto may_hit_a_box = [&](double dir_z) { return above <= 0.0 || -dir_z * range >= above; };
+  const auto ground = [&](double dir_z) {
+    return dir_z < -1e-9 ? -sensor.p.z() / dir_z : std::numeric_limits<double>::infinity();
   };
+  // Level, a beam's world direction rises as in the sensor frame in every column (R's last row
+  // is (0, 0, r22)): its ground distance and whether it may reach a box are per beam.
+  if (level) {
+    for (int b = 0; b < pattern_.beams; ++b) {
+      const double dir_z = R(2, 2) * elevations_[static_cast<std::size_t>(b)].sin;
+      level_beams_[static_cast<std::size_t>(b)] = {ground(dir_z), may_hit_a_box(dir_z)};
+    }
+  }
   // A level sensor: each candidate box cut to the stretch [s0, s1] of horizontal distance
   // along the column's direction `h` that lies over its footprint (none if it misses or lies
   // beyond range: a beam goes at least as far as its horizontal distance).
@@ -172,18 +183,22 @@ void LidarSimulator::scan(const BoxWorld& world, const Pose3& sensor,
         const std::size_t pts0 = pts.size(), mis0 = mis.size();
         for (int b = 0; b < pattern_.beams; ++b) {
           const Vec3& local = directions_[static_cast<std::size_t>(c * pattern_.beams + b)];
-          const Vec3 dir = R * local;
-          double t = std::numeric_limits<double>::infinity();
-          if (dir.z() < -1e-9) t = -sensor.p.z() / dir.z();  // the ground
+          double t;  // to the nearest of the ground and the boxes
           if (level) {
-            if (!stretches.empty() && may_hit_a_box(dir)) {
+            const LevelBeam& beam = level_beams_[static_cast<std::size_t>(b)];
+            t = beam.ground;
+            if (!stretches.empty() && beam.may_hit_a_box) {
               t = std::min(t, nearest_box(elevations_[static_cast<std::size_t>(b)], stretches));
             }
-          } else if (!candidates.empty() && may_hit_a_box(dir)) {
-            const BoxRay ray(sensor.p, dir);
-            for (const int i : candidates) {
-              const double tb = ray_box(ray, world.boxes[static_cast<std::size_t>(i)]);
-              if (tb >= 0.0 && tb < t) t = tb;
+          } else {
+            const Vec3 dir = R * local;
+            t = ground(dir.z());
+            if (!candidates.empty() && may_hit_a_box(dir.z())) {
+              const BoxRay ray(sensor.p, dir);
+              for (const int i : candidates) {
+                const double tb = ray_box(ray, world.boxes[static_cast<std::size_t>(i)]);
+                if (tb >= 0.0 && tb < t) t = tb;
+              }
             }
           }
           if (t < pattern_.min_range_m) continue;  // too close: the sensor reports nothing

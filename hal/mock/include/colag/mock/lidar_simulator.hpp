@@ -49,7 +49,12 @@ class LidarSimulator {
     double inv_cos, inv_tan, sin;  // inv_tan is 0 for a level beam
   };
   std::vector<Elevation> elevations_;  // per beam
-  struct Stretch {                     // where a column's horizontal line crosses a box's footprint
+  struct LevelBeam {
+    double ground;  // distance to the ground along the beam (infinity if it never gets there)
+    bool may_hit_a_box;
+  };
+  std::vector<LevelBeam> level_beams_;  // per beam, for the scan being cast (level sensor)
+  struct Stretch {  // where a column's horizontal line crosses a box's footprint
     double s0, s1, height;
   };
   std::vector<hal::LidarPoint> points_, misses_;
