@@ -133,25 +133,38 @@ void Mapper::prepare(const Pose3& sensor, const hal::LidarScanView& scan, int to
   const Vec3 size(g.cells_x(), g.cells_y(), top_layers);  // the mapped box in voxels
   const Vec3 sensor_u = (sensor.p - lo) * inv_res;
   const double max_r = config_.max_range_m;
+  const std::size_t n_points = scan.points.size();
+  const std::size_t stride_y = static_cast<std::size_t>(g.cells_x());
+  const std::size_t stride_z = stride_y * static_cast<std::size_t>(g.cells_y());
   for (auto& list : part.ends)
     list.clear();
+  // The loop runs for every ray of every scan: scalar arithmetic in the order Eigen's would do
+  // it (the same rounding), no index round trip (inside the box, the voxel is the truncation).
   for (std::size_t k = from; k < to; ++k) {
-    const bool returns = k < scan.points.size();
-    const hal::LidarPoint& p = returns ? scan.points[k] : scan.misses[k - scan.points.size()];
-    const Vec3 local(p.x_m, p.y_m, p.z_m);
-    if (!all_finite(local)) {
+    const bool returns = k < n_points;
+    const hal::LidarPoint& p = returns ? scan.points.data()[k] : scan.misses.data()[k - n_points];
+    double lx = p.x_m, ly = p.y_m, lz = p.z_m;
+    if (!(std::isfinite(lx) && std::isfinite(ly) && std::isfinite(lz))) {
       ++part.rays_outside;
       continue;
     }
-    const double r2 = local.squaredNorm();
+    const double r2 = lx * lx + ly * ly + lz * lz;
     const bool within = r2 <= max_r * max_r;
+    if (!within) {
+      const double scale = max_r / std::sqrt(r2);
+      lx *= scale;
+      ly *= scale;
+      lz *= scale;
+    }
     Ray& ray = rays_[k];
-    ray.end = sensor.p + R * (within ? local : local * (max_r / std::sqrt(r2)));
+    ray.end = Vec3(sensor.p.x() + (R(0, 0) * lx + R(0, 1) * ly + R(0, 2) * lz),
+                   sensor.p.y() + (R(1, 0) * lx + R(1, 1) * ly + R(1, 2) * lz),
+                   sensor.p.z() + (R(2, 0) * lx + R(2, 1) * ly + R(2, 2) * lz));
     ray.hit = returns && within;
-    // The end in voxel units: inside the box, the voxel index is its truncation (no floor, no
-    // index round trip: this loop runs for every ray of every scan).
-    Vec3 u = (ray.end - lo) * inv_res;
-    if (!((u.array() >= 0.0).all() && (u.array() < size.array()).all())) {
+    Vec3 u((ray.end.x() - lo.x()) * inv_res, (ray.end.y() - lo.y()) * inv_res,
+           (ray.end.z() - lo.z()) * inv_res);
+    if (!(u.x() >= 0.0 && u.y() >= 0.0 && u.z() >= 0.0 && u.x() < size.x() && u.y() < size.y() &&
+          u.z() < size.z())) {
       // Cut where the ray leaves the box: only the axes it leaves through need a division.
       const Vec3 d = u - sensor_u;
       double t = 1.0;
@@ -165,7 +178,9 @@ void Mapper::prepare(const Pose3& sensor, const hal::LidarScanView& scan, int to
       u = ((ray.end - lo) * inv_res).cwiseMax(0.0).cwiseMin(size - Vec3::Constant(0.5));
     }
     const VoxelIndex v{static_cast<int>(u.x()), static_cast<int>(u.y()), static_cast<int>(u.z())};
-    ray.voxel = static_cast<std::uint32_t>(g.index(v));
+    ray.voxel = static_cast<std::uint32_t>(static_cast<std::size_t>(v.z) * stride_z +
+                                           static_cast<std::size_t>(v.y) * stride_y +
+                                           static_cast<std::size_t>(v.x));
     const int along = cut.axis == 0 ? v.x : v.y;
     const End end = along < cut.cell ? kLow : (along > cut.cell ? kHigh : kSlice);
     (void)part.ends[end].push_back(static_cast<std::uint32_t>(k));
