@@ -144,10 +144,6 @@ void Mapper::prepare(const Pose3& sensor, const hal::LidarScanView& scan, int to
     const bool returns = k < n_points;
     const hal::LidarPoint& p = returns ? scan.points.data()[k] : scan.misses.data()[k - n_points];
     double lx = p.x_m, ly = p.y_m, lz = p.z_m;
-    if (!(std::isfinite(lx) && std::isfinite(ly) && std::isfinite(lz))) {
-      ++part.rays_outside;
-      continue;
-    }
     const double r2 = lx * lx + ly * ly + lz * lz;
     const bool within = r2 <= max_r * max_r;
     if (!within) {
@@ -163,8 +159,13 @@ void Mapper::prepare(const Pose3& sensor, const hal::LidarScanView& scan, int to
     ray.hit = returns && within;
     Vec3 u((ray.end.x() - lo.x()) * inv_res, (ray.end.y() - lo.y()) * inv_res,
            (ray.end.z() - lo.z()) * inv_res);
-    if (!(u.x() >= 0.0 && u.y() >= 0.0 && u.z() >= 0.0 && u.x() < size.x() && u.y() < size.y() &&
-          u.z() < size.z())) {
+    // A non-finite point ends up here too (NaN, or infinity scaled to NaN), and is dropped.
+    if (!((u.x() >= 0.0) & (u.y() >= 0.0) & (u.z() >= 0.0) & (u.x() < size.x()) &
+          (u.y() < size.y()) & (u.z() < size.z()))) {
+      if (!std::isfinite(u.x() + u.y() + u.z())) {
+        ++part.rays_outside;
+        continue;
+      }
       // Cut where the ray leaves the box: only the axes it leaves through need a division.
       const Vec3 d = u - sensor_u;
       double t = 1.0;
