@@ -152,33 +152,44 @@ void Mapper::prepare(const Pose3& sensor, const hal::LidarScanView& scan, int to
       ly *= scale;
       lz *= scale;
     }
+    // Scalars throughout, none read back from memory: a 16-byte load of two 8-byte stores just
+    // made cannot be forwarded, and such loads (Eigen's packets of the ray's end) stalled this
+    // loop for a third of its time.
+    const double ex = sensor.p.x() + (R(0, 0) * lx + R(0, 1) * ly + R(0, 2) * lz);
+    const double ey = sensor.p.y() + (R(1, 0) * lx + R(1, 1) * ly + R(1, 2) * lz);
+    const double ez = sensor.p.z() + (R(2, 0) * lx + R(2, 1) * ly + R(2, 2) * lz);
     Ray& ray = rays_[k];
-    ray.end = Vec3(sensor.p.x() + (R(0, 0) * lx + R(0, 1) * ly + R(0, 2) * lz),
-                   sensor.p.y() + (R(1, 0) * lx + R(1, 1) * ly + R(1, 2) * lz),
-                   sensor.p.z() + (R(2, 0) * lx + R(2, 1) * ly + R(2, 2) * lz));
+    ray.end = Vec3(ex, ey, ez);
     ray.hit = returns && within;
-    Vec3 u((ray.end.x() - lo.x()) * inv_res, (ray.end.y() - lo.y()) * inv_res,
-           (ray.end.z() - lo.z()) * inv_res);
+    double ux = (ex - lo.x()) * inv_res, uy = (ey - lo.y()) * inv_res, uz = (ez - lo.z()) * inv_res;
     // A non-finite point ends up here too (NaN, or infinity scaled to NaN), and is dropped.
-    if (!((u.x() >= 0.0) & (u.y() >= 0.0) & (u.z() >= 0.0) & (u.x() < size.x()) &
-          (u.y() < size.y()) & (u.z() < size.z()))) {
-      if (!std::isfinite(u.x() + u.y() + u.z())) {
+    if (!((ux >= 0.0) & (uy >= 0.0) & (uz >= 0.0) & (ux < size.x()) & (uy < size.y()) &
+          (uz < size.z()))) {
+      if (!std::isfinite(ux + uy + uz)) {
         ++part.rays_outside;
         continue;
       }
       // Cut where the ray leaves the box: only the axes it leaves through need a division.
-      const Vec3 d = u - sensor_u;
       double t = 1.0;
-      for (int a = 0; a < 3; ++a) {
-        if (u[a] >= size[a]) t = std::min(t, (size[a] - sensor_u[a]) / d[a]);
-        if (u[a] < 0.0) t = std::min(t, -sensor_u[a] / d[a]);
-      }
+      const auto exit = [&](double u, double start, double top) {
+        if (u >= top) t = std::min(t, (top - start) / (u - start));
+        if (u < 0.0) t = std::min(t, -start / (u - start));
+      };
+      exit(ux, sensor_u.x(), size.x());
+      exit(uy, sensor_u.y(), size.y());
+      exit(uz, sensor_u.z(), size.z());
       t = std::max(0.0, t - 1e-6);
-      ray.end = sensor.p + t * (ray.end - sensor.p);
+      const Vec3& s = sensor.p;
+      const double cx = s.x() + t * (ex - s.x()), cy = s.y() + t * (ey - s.y()),
+                   cz = s.z() + t * (ez - s.z());
+      ray.end = Vec3(cx, cy, cz);
       ray.hit = false;
-      u = ((ray.end - lo) * inv_res).cwiseMax(0.0).cwiseMin(size - Vec3::Constant(0.5));
+      const auto clamp = [](double u, double top) { return std::min(std::max(u, 0.0), top - 0.5); };
+      ux = clamp((cx - lo.x()) * inv_res, size.x());
+      uy = clamp((cy - lo.y()) * inv_res, size.y());
+      uz = clamp((cz - lo.z()) * inv_res, size.z());
     }
-    const VoxelIndex v{static_cast<int>(u.x()), static_cast<int>(u.y()), static_cast<int>(u.z())};
+    const VoxelIndex v{static_cast<int>(ux), static_cast<int>(uy), static_cast<int>(uz)};
     ray.voxel = static_cast<std::uint32_t>(static_cast<std::size_t>(v.z) * stride_z +
                                            static_cast<std::size_t>(v.y) * stride_y +
                                            static_cast<std::size_t>(v.x));
