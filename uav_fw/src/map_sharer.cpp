@@ -6,6 +6,21 @@
 namespace colag::uav {
 
 namespace {
+// One row of a band layer into the per-cell flags (0 or 1; bytes, not bool, which GCC does not
+// vectorise). The flags and the map row are both char types, which may alias anything: without
+// `__restrict` (GCC's and Clang's) the compiler would need a run-time overlap check and keeps
+// these loops scalar.
+void mark_if_not(std::uint8_t* __restrict mark, const std::int8_t* __restrict row, int n,
+                 std::int8_t value) {
+  for (int x = 0; x < n; ++x)
+    mark[x] |= static_cast<std::uint8_t>(row[x] != value);
+}
+void mark_if_at_least(std::uint8_t* __restrict mark, const std::int8_t* __restrict row, int n,
+                      std::int8_t value) {
+  for (int x = 0; x < n; ++x)
+    mark[x] |= static_cast<std::uint8_t>(row[x] >= value);
+}
+
 // FNV-1a over the payload: detects an unchanged patch without keeping a copy of it.
 std::uint32_t checksum(const msg::MapPatch& p) {
   std::uint32_t h = 2166136261U;
@@ -56,32 +71,43 @@ bool MapSharer::make_patch(const Mapper& map, const Vec2& position, double yaw, 
   const int z1 = std::min(
       g3.cells_z(),
       static_cast<int>(std::ceil((config_.band_high_m - g3.origin_z()) / g3.resolution() - 1e-9)));
-  const std::size_t n = static_cast<std::size_t>(cells_.width * cells_.height);
-  std::fill_n(occupied_.begin(), n, false);
-  std::fill_n(seen_low_.begin(), n, false);
-  // Branch-free inner loops on the raw log-odds (the compiler vectorises them): a sharing step
-  // reads ~17 000 voxels per UGV.
+  // Branch-free inner loops on the raw log-odds, which the compiler vectorises when their length
+  // is a constant: away from the grid's east edge each row is read kMaxPatchSideCells wide (the
+  // flags beyond the patch are never used). A sharing step reads ~17 000 voxels per UGV.
+  constexpr int kSide = limits::kMaxPatchSideCells;
+  const bool whole_rows = lo.x + kSide <= g3.cells_x();
+  const std::size_t n = static_cast<std::size_t>(kSide * cells_.height);
+  std::fill_n(occupied_.begin(), n, 0);
+  std::fill_n(seen_low_.begin(), n, 0);
   const std::int8_t unknown = map.raw_unknown(), occupied = map.raw_occupied();
   for (int z = z0 - 1; z < z1; ++z) {
     for (int y = 0; y < cells_.height; ++y) {
       const std::int8_t* row = map.row(lo.y + y, z) + lo.x;
-      const std::size_t base = static_cast<std::size_t>(y * cells_.width);
-      bool* seen = &seen_low_[base];
-      bool* occ = &occupied_[base];
-      const int w = cells_.width;
+      std::uint8_t* seen = &seen_low_[static_cast<std::size_t>(y * kSide)];
+      std::uint8_t* occ = &occupied_[static_cast<std::size_t>(y * kSide)];
       if (z <= z0) {
-        for (int x = 0; x < w; ++x)
-          seen[x] |= row[x] != unknown;
+        if (whole_rows) {
+          mark_if_not(seen, row, kSide, unknown);
+        } else {
+          mark_if_not(seen, row, cells_.width, unknown);
+        }
       }
       if (z >= z0) {
-        for (int x = 0; x < w; ++x)
-          occ[x] |= row[x] >= occupied;
+        if (whole_rows) {
+          mark_if_at_least(occ, row, kSide, occupied);
+        } else {
+          mark_if_at_least(occ, row, cells_.width, occupied);
+        }
       }
     }
   }
-  for (std::size_t i = 0; i < n; ++i) {
-    cells_.cells[i] = occupied_[i] ? CellState::kOccupied
-                                   : (seen_low_[i] ? CellState::kFree : CellState::kUnknown);
+  for (int y = 0; y < cells_.height; ++y) {
+    for (int x = 0; x < cells_.width; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y * kSide + x);
+      cells_.cells[static_cast<std::size_t>(y * cells_.width + x)] =
+          occupied_[i] != 0 ? CellState::kOccupied
+                            : (seen_low_[i] != 0 ? CellState::kFree : CellState::kUnknown);
+    }
   }
   if (!encode_patch(cells_, out)) return false;
   out.resolution_m = g.resolution();

@@ -65,7 +65,8 @@ class MapSharer {
   SharerConfig config_;
   SharerCounters counters_;
   PatchCells cells_;
-  std::array<bool, limits::kMaxPatchCells> occupied_{}, seen_low_{};
+  // Per ground cell of the patch, rows kMaxPatchSideCells apart: 0 or 1.
+  std::array<std::uint8_t, limits::kMaxPatchCells> occupied_{}, seen_low_{};
   std::array<PerUgv, limits::kMaxUgvs> ugvs_{};
 };
 
