@@ -56,11 +56,13 @@ LidarSimulator::LidarSimulator(const LidarPattern& pattern, ForkJoin* fork_join)
     elevations_.push_back(
         {1.0 / std::cos(el), std::abs(tan) < 1e-12 ? 0.0 : 1.0 / tan, std::sin(el)});
   }
-  points_.reserve(n);
-  misses_.reserve(n);
+  // Fixed buffers, sized once: a scan fills them from the start (push_back kept the vector's end
+  // in memory, a load and a store per beam the next beam waited for).
+  points_.resize(n);
+  misses_.resize(n);
   for (std::size_t part = 0; part < 2; ++part) {
-    parts_[part].points.reserve(n);
-    parts_[part].misses.reserve(n);
+    parts_[part].points.resize(n);
+    parts_[part].misses.resize(n);
     parts_[part].stretches.reserve(256);
   }
   level_beams_.resize(static_cast<std::size_t>(pattern.beams));
@@ -74,8 +76,6 @@ LidarSimulator::LidarSimulator(const LidarPattern& pattern, ForkJoin* fork_join)
 void LidarSimulator::scan(const BoxWorld& world, const Pose3& sensor,
                           std::span<const hal::LidarPoint>& points,
                           std::span<const hal::LidarPoint>& misses) {
-  points_.clear();
-  misses_.clear();
   const double range = pattern_.max_range_m;
   const Mat3 R = sensor.q.toRotationMatrix();
   const double yaw = yaw_of(sensor.q);
@@ -171,8 +171,7 @@ void LidarSimulator::scan(const BoxWorld& world, const Pose3& sensor,
   // would take unequal times), then join them in column order: the same scan either way.
   const auto cast = [&](int part) {
     auto& [pts, mis, stretches] = parts_[static_cast<std::size_t>(part)];
-    pts.clear();
-    mis.clear();
+    std::size_t n_pts = 0, n_mis = 0;
     for (int c0 = part * kBlock; c0 < cols; c0 += 2 * kBlock) {
       for (int c = c0; c < std::min(c0 + kBlock, cols); ++c) {
         const auto& candidates = level ? column_boxes_[static_cast<std::size_t>(c)] : in_range_;
@@ -180,7 +179,7 @@ void LidarSimulator::scan(const BoxWorld& world, const Pose3& sensor,
           const Vec2& az = azimuths_[static_cast<std::size_t>(c)];
           cut_to_column(R.topLeftCorner<2, 2>() * az, candidates, stretches);
         }
-        const std::size_t pts0 = pts.size(), mis0 = mis.size();
+        const std::size_t pts0 = n_pts, mis0 = n_mis;
         for (int b = 0; b < pattern_.beams; ++b) {
           const Vec3& local = directions_[static_cast<std::size_t>(c * pattern_.beams + b)];
           double t;  // to the nearest of the ground and the boxes
@@ -203,13 +202,16 @@ void LidarSimulator::scan(const BoxWorld& world, const Pose3& sensor,
           }
           if (t < pattern_.min_range_m) continue;  // too close: the sensor reports nothing
           const Vec3 end = local * std::min(t, range);
-          (t <= range ? pts : mis)
-              .push_back({static_cast<float>(end.x()), static_cast<float>(end.y()),
-                          static_cast<float>(end.z())});
+          const hal::LidarPoint point{static_cast<float>(end.x()), static_cast<float>(end.y()),
+                                      static_cast<float>(end.z())};
+          if (t <= range) {
+            pts[n_pts++] = point;
+          } else {
+            mis[n_mis++] = point;
+          }
         }
-        column_counts_[static_cast<std::size_t>(c)] = {
-            static_cast<std::uint16_t>(pts.size() - pts0),
-            static_cast<std::uint16_t>(mis.size() - mis0)};
+        column_counts_[static_cast<std::size_t>(c)] = {static_cast<std::uint16_t>(n_pts - pts0),
+                                                       static_cast<std::uint16_t>(n_mis - mis0)};
       }
     }
   };
@@ -220,19 +222,22 @@ void LidarSimulator::scan(const BoxWorld& world, const Pose3& sensor,
     cast(1);
   }
   std::array<std::size_t, 2> next_point{}, next_miss{};
+  std::size_t n_points = 0, n_misses = 0;
   for (int c = 0; c < cols; ++c) {
     const std::size_t part = static_cast<std::size_t>((c / kBlock) % 2);
-    const auto [n_points, n_misses] = column_counts_[static_cast<std::size_t>(c)];
-    const auto& from = parts_[part];
-    const auto p0 = from.points.begin() + static_cast<std::ptrdiff_t>(next_point[part]);
-    const auto m0 = from.misses.begin() + static_cast<std::ptrdiff_t>(next_miss[part]);
-    points_.insert(points_.end(), p0, p0 + n_points);
-    misses_.insert(misses_.end(), m0, m0 + n_misses);
-    next_point[part] += n_points;
-    next_miss[part] += n_misses;
+    const auto [column_points, column_misses] = column_counts_[static_cast<std::size_t>(c)];
+    const Part& from = parts_[part];
+    std::copy_n(from.points.begin() + static_cast<std::ptrdiff_t>(next_point[part]), column_points,
+                points_.begin() + static_cast<std::ptrdiff_t>(n_points));
+    std::copy_n(from.misses.begin() + static_cast<std::ptrdiff_t>(next_miss[part]), column_misses,
+                misses_.begin() + static_cast<std::ptrdiff_t>(n_misses));
+    next_point[part] += column_points;
+    next_miss[part] += column_misses;
+    n_points += column_points;
+    n_misses += column_misses;
   }
-  points = points_;
-  misses = misses_;
+  points = {points_.data(), n_points};
+  misses = {misses_.data(), n_misses};
 }
 
 }  // namespace colag::mock

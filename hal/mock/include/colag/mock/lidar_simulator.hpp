@@ -57,10 +57,11 @@ class LidarSimulator {
   struct Stretch {  // where a column's horizontal line crosses a box's footprint
     double s0, s1, height;
   };
+  // The last scan, in column order; every buffer holds a whole turn (sized at construction).
   std::vector<hal::LidarPoint> points_, misses_;
-  struct alignas(64) Part {  // one cache line each: the two parts push at the same time
-    std::vector<hal::LidarPoint> points, misses;
-    std::vector<Stretch> stretches;  // of the column being cast (level sensor)
+  struct alignas(64) Part {  // one cache line each: the two parts write at the same time
+    std::vector<hal::LidarPoint> points, misses;  // this part's columns, in order
+    std::vector<Stretch> stretches;               // of the column being cast (level sensor)
   };
   std::array<Part, 2> parts_;
   std::vector<std::vector<int>> column_boxes_;  // per column: boxes that may be hit (level)
