@@ -4,12 +4,15 @@
 //   colag_bench tables [--seeds K] [--jobs J] [--table 1|2|all] [--csv FILE] [--quick]
 //   colag_bench safety [--seeds K] [--jobs J] [--csv FILE] [--quick]
 //                                           the paper's Table I and II, measured
+//   colag_bench speed [--runs N] [--scenario S] [--ugvs N] [--seed S]
+//                                           the real-time factor of one mission, N times
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
 #include <memory>
 
 #include "bench_safety.hpp"
+#include "bench_speed.hpp"
 #include "bench_tables.hpp"
 #include "tsptw_instance.hpp"
 
@@ -78,9 +81,21 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   safety->add_option("--sim", sopt.sim, "colag_sim to run (default: next to colag_bench)");
   safety->add_flag("--quick", sopt.quick, "dense, 3 UGVs, two fault settings, one seed");
+  auto* speed = app.add_subcommand(
+      "speed", "the real-time factor of one mission (default dense, 7 UGVs, seed 1), N runs");
+  programs::SpeedOptions popt;
+  speed->add_option("--runs", popt.runs, "runs, one after the other")->check(CLI::Range(1, 100));
+  speed->add_option("--scenario", popt.scenario, "sparse or dense")
+      ->check(CLI::IsMember({"sparse", "dense"}));
+  speed->add_option("--ugvs", popt.ugvs, "UGVs")->check(CLI::Range(1, 16));
+  speed->add_option("--seed", popt.seed, "seed");
+  speed->add_option("--target", popt.target, "real-time factor the median should reach")
+      ->check(CLI::PositiveNumber);
+  speed->add_option("--sim", popt.sim, "colag_sim to run (default: next to colag_bench)");
   CLI11_PARSE(app, argc, argv);
   if (*sched) return run_scheduler(instance, exact_max);
   if (*tables) return programs::run_tables(topt);
   if (*safety) return programs::run_safety(sopt);
+  if (*speed) return programs::run_speed(popt);
   return 2;
 }
