@@ -4,9 +4,9 @@
 #include <vector>
 
 #include "colag/common/map_patch_codec.hpp"
-#include "colag/mock/lidar_simulator.hpp"
 #include "colag/uav/map_sharer.hpp"
 #include "colag/uav/mapper.hpp"
+#include "dense_scans.hpp"
 
 using namespace colag;
 using namespace colag::uav;
@@ -16,21 +16,13 @@ namespace {
 // A map of the dense box world seen along x = 0.3 and from near the grid's east edge (x = 18,
 // so that the map reaches the edge at x = 20).
 std::unique_ptr<Mapper> mapped_world() {
-  mock::MapGenConfig gen;
-  gen.boxes = 80;
-  const mock::BoxWorld world = mock::generate_box_world(gen).value();
-  auto lidar = std::make_unique<mock::LidarSimulator>();
-  auto map = std::make_unique<Mapper>();
   std::vector<Pose3> poses;
   for (int k = 0; k < 30; ++k)
     poses.push_back({Vec3(0.3, 8.0 - 0.5 * k, 1.0), Quat::Identity()});
   for (int k = 0; k < 10; ++k)
     poses.push_back({Vec3(18.0, 2.0 - 0.5 * k, 1.0), Quat::Identity()});
-  for (const Pose3& pose : poses) {
-    std::span<const hal::LidarPoint> points, misses;
-    lidar->scan(world, pose, points, misses);
-    map->insert_scan(pose, {TimePoint{}, 8.0F, points, misses});
-  }
+  auto map = std::make_unique<Mapper>();
+  test::scan_dense_map(poses, {map.get()});
   return map;
 }
 

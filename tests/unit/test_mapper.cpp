@@ -9,9 +9,11 @@
 #include "colag/mock/lidar_simulator.hpp"
 #include "colag/platform/worker_pool.hpp"
 #include "colag/uav/mapper.hpp"
+#include "dense_scans.hpp"
 
 using namespace colag;
 using namespace colag::uav;
+using colag::test::scan_dense_map;
 
 namespace {
 
@@ -35,20 +37,6 @@ double segment_to_voxel(const GridGeometry3d& g, const Vec3& a, const Vec3& b, V
     best = std::min(best, (p - p.cwiseMax(lo).cwiseMin(hi)).norm());
   }
   return best;
-}
-
-// Scans of the dense map from each pose, each inserted into every map given.
-void scan_dense_map(const std::vector<Pose3>& poses, std::initializer_list<Mapper*> maps) {
-  mock::MapGenConfig gen;
-  gen.boxes = 80;
-  const mock::BoxWorld world = mock::generate_box_world(gen).value();
-  auto lidar = std::make_unique<mock::LidarSimulator>();
-  for (const Pose3& pose : poses) {
-    std::span<const hal::LidarPoint> points, misses;
-    lidar->scan(world, pose, points, misses);
-    for (Mapper* map : maps)
-      map->insert_scan(pose, {TimePoint{}, 8.0F, points, misses});
-  }
 }
 
 // A straight flight 1 m up: 12 m at 3 m/s, 10 Hz.

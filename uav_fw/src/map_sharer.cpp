@@ -30,13 +30,16 @@ std::uint32_t checksum(const msg::MapPatch& p) {
 }
 }  // namespace
 
+MapSharer::Band MapSharer::band(const GridGeometry3d& g) const {
+  return {
+      std::max(1, static_cast<int>(
+                      std::floor((config_.band_low_m - g.origin_z()) / g.resolution() + 1e-9))),
+      std::min(g.cells_z(), static_cast<int>(std::ceil(
+                                (config_.band_high_m - g.origin_z()) / g.resolution() - 1e-9)))};
+}
+
 CellState MapSharer::classify(const Mapper& map, int x, int y) const {
-  const auto& g = map.geometry();
-  const int z0 = std::max(
-      1, static_cast<int>(std::floor((config_.band_low_m - g.origin_z()) / g.resolution() + 1e-9)));
-  const int z1 = std::min(
-      g.cells_z(),
-      static_cast<int>(std::ceil((config_.band_high_m - g.origin_z()) / g.resolution() - 1e-9)));
+  const auto [z0, z1] = band(map.geometry());
   for (int z = z0; z < z1; ++z) {
     if (map.state(VoxelIndex{x, y, z}) == VoxelState::kOccupied) return CellState::kOccupied;
   }
@@ -65,12 +68,7 @@ bool MapSharer::make_patch(const Mapper& map, const Vec2& position, double yaw, 
   // Layer by layer over contiguous rows (cache friendly), accumulating per ground cell:
   // any band voxel occupied / the ground or the lowest band voxel observed.
   const auto& g3 = map.geometry();
-  const int z0 = std::max(
-      1,
-      static_cast<int>(std::floor((config_.band_low_m - g3.origin_z()) / g3.resolution() + 1e-9)));
-  const int z1 = std::min(
-      g3.cells_z(),
-      static_cast<int>(std::ceil((config_.band_high_m - g3.origin_z()) / g3.resolution() - 1e-9)));
+  const auto [z0, z1] = band(g3);
   // Branch-free inner loops on the raw log-odds, which the compiler vectorises when their length
   // is a constant: away from the grid's east edge each row is read kMaxPatchSideCells wide (the
   // flags beyond the patch are never used). A sharing step reads ~17 000 voxels per UGV.

@@ -139,7 +139,9 @@ void Mapper::prepare(const Pose3& sensor, const hal::LidarScanView& scan, int to
   for (auto& list : part.ends)
     list.clear();
   // The loop runs for every ray of every scan: scalar arithmetic in the order Eigen's would do
-  // it (the same rounding), no index round trip (inside the box, the voxel is the truncation).
+  // it (the same rounding), none read back from memory (a 16-byte load of two 8-byte stores just
+  // made cannot be forwarded: Eigen's packets of the ray's end stalled this loop for a third of
+  // its time), no index round trip (inside the box, the voxel is the truncation).
   for (std::size_t k = from; k < to; ++k) {
     const bool returns = k < n_points;
     const hal::LidarPoint& p = returns ? scan.points.data()[k] : scan.misses.data()[k - n_points];
@@ -152,9 +154,6 @@ void Mapper::prepare(const Pose3& sensor, const hal::LidarScanView& scan, int to
       ly *= scale;
       lz *= scale;
     }
-    // Scalars throughout, none read back from memory: a 16-byte load of two 8-byte stores just
-    // made cannot be forwarded, and such loads (Eigen's packets of the ray's end) stalled this
-    // loop for a third of its time.
     const double ex = sensor.p.x() + (R(0, 0) * lx + R(0, 1) * ly + R(0, 2) * lz);
     const double ey = sensor.p.y() + (R(1, 0) * lx + R(1, 1) * ly + R(1, 2) * lz);
     const double ez = sensor.p.z() + (R(2, 0) * lx + R(2, 1) * ly + R(2, 2) * lz);

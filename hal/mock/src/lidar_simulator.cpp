@@ -37,20 +37,23 @@ LidarSimulator::LidarSimulator(const LidarPattern& pattern, ForkJoin* fork_join)
     : pattern_(pattern), fork_join_(fork_join) {
   const std::size_t n =
       static_cast<std::size_t>(pattern.beams) * static_cast<std::size_t>(pattern.columns);
+  // One formula for a beam's elevation: the level path relies on elevations_[b].sin being the
+  // very value in every column's direction of beam b.
+  const auto elevation = [&](int b) {
+    return (pattern.lowest_elevation_deg + b * pattern.elevation_step_deg) * M_PI / 180.0;
+  };
   directions_.reserve(n);
   for (int c = 0; c < pattern.columns; ++c) {
     const double az = 2.0 * M_PI * c / pattern.columns;
     azimuths_.emplace_back(std::cos(az), std::sin(az));
     for (int b = 0; b < pattern.beams; ++b) {
-      const double el =
-          (pattern.lowest_elevation_deg + b * pattern.elevation_step_deg) * M_PI / 180.0;
+      const double el = elevation(b);
       directions_.emplace_back(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az),
                                std::sin(el));
     }
   }
   for (int b = 0; b < pattern.beams; ++b) {
-    const double el =
-        (pattern.lowest_elevation_deg + b * pattern.elevation_step_deg) * M_PI / 180.0;
+    const double el = elevation(b);
     const double tan = std::tan(el);
     // Within 1e-12 of level counts as level, as a 3-D slab test treats a parallel axis.
     elevations_.push_back(

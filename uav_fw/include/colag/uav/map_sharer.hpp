@@ -62,6 +62,13 @@ class MapSharer {
     std::uint16_t width = 0, height = 0, bytes = 0;
     std::uint32_t checksum = 0;
   };
+  // The voxel layers of the robot's body band: [z0, z1), z0 at least 1 (layer z0 - 1 is the
+  // ground's). One computation for make_patch and classify.
+  struct Band {
+    int z0, z1;
+  };
+  Band band(const GridGeometry3d& g) const;
+
   SharerConfig config_;
   SharerCounters counters_;
   PatchCells cells_;
