@@ -82,6 +82,7 @@ void BM_ScanInsertion(benchmark::State& state) {
   state.counters["traced"] = static_cast<double>(c.rays - c.rays_merged) / scans;
   state.counters["visits"] = static_cast<double>(c.voxel_visits) / scans;
   state.counters["updates"] = static_cast<double>(c.voxel_updates) / scans;
+  state.counters["resumed"] = static_cast<double>(c.rays_resumed) / scans;
 }
 BENCHMARK(BM_ScanInsertion)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 

@@ -116,6 +116,44 @@ TEST(VoxelTraversal, StopsWhereTheSegmentLeavesTheGrid) {
   EXPECT_EQ(visited, 10);
 }
 
+// The mapper traces each half of a scan up to the sensor's voxel row or column this way.
+TEST(VoxelTraversal, StopInFrontOfALayerVisitsThePrefixBeforeIt) {
+  const GridGeometry3d g(-2.0, -2.0, 0.0, 0.1, 40, 40, 20);
+  Rng rng(5);
+  int stopped_short = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const Vec3 a(rng.uniform(-1.9, 1.9), rng.uniform(-1.9, 1.9), rng.uniform(0.05, 1.95));
+    const Vec3 b(rng.uniform(-1.9, 1.9), rng.uniform(-1.9, 1.9), rng.uniform(0.05, 1.95));
+    const VoxelIndex va = g.voxel_of(a), vb = g.voxel_of(b);
+    const int axis = trial % 3;
+    const auto along = [&](VoxelIndex v) { return axis == 0 ? v.x : (axis == 1 ? v.y : v.z); };
+    const auto index_of = [&](VoxelIndex v) { return g.index(v); };
+    std::vector<std::size_t> full, cut;
+    any_voxel_on_segment(g, a, b, [&](VoxelIndex v) {
+      full.push_back(index_of(v));
+      return false;
+    });
+    // A layer between the ends (or the one b is in, or a's own: then no stop).
+    const int lo = std::min(along(va), along(vb)), hi = std::max(along(va), along(vb));
+    const int cell = lo + static_cast<int>(rng.uniform(0.0, 1.0) * (hi - lo + 1));
+    any_voxel_index_on_segment(g, a, b, VoxelLayer{axis, cell}, [&](std::size_t i) {
+      cut.push_back(i);
+      return false;
+    });
+    std::vector<std::size_t> expected;
+    for (const std::size_t i : full) {
+      const std::size_t layer = g.index({0, 0, 1});
+      const VoxelIndex v{static_cast<int>(i % layer % g.cells_x()),
+                         static_cast<int>(i % layer / g.cells_x()), static_cast<int>(i / layer)};
+      if (along(v) == cell && along(va) != cell) break;
+      expected.push_back(i);
+    }
+    EXPECT_EQ(cut, expected) << "trial " << trial << " axis " << axis << " cell " << cell;
+    stopped_short += cut.size() < full.size();
+  }
+  EXPECT_GT(stopped_short, 200);  // the layers were mostly in the way
+}
+
 TEST(Mapper, ScanOfOneBoxOccupiedFacesFreeFrontUnknownShadow) {
   mock::BoxWorld world;
   world.boxes.push_back({Vec2(3.0, 0.0), Vec2(0.45, 0.45), 0.6});

@@ -11,7 +11,7 @@ std::int8_t to_units(double p) {
   const double l = std::log(p / (1.0 - p)) * kScale;
   return static_cast<std::int8_t>(std::clamp(std::lround(l), -127L, 127L));
 }
-// How far a half's part of a ray stops short of the sensor's slice (and the rest starts inside).
+// How far inside the sensor's slice the rest of a ray that reached it starts.
 constexpr double kEdge_m = 1e-7;
 // Where the sensor's slice meets the half on `side` (-1 low, +1 high) along `axis`.
 double slice_edge(const GridGeometry3d& g, int axis, int cell, int side) {
@@ -70,8 +70,8 @@ inline bool Mapper::add_once(std::int8_t* logodds, std::uint64_t* touched, std::
 // `early_stop_crossed` consecutive voxels an earlier ray of this scan crossed: from there on the
 // earlier rays have done the work. Stopping early only ever skips miss updates, so it never
 // creates free space (a test compares it with full tracing).
-bool Mapper::trace(const Vec3& a, const Vec3& b, bool first_is_end, bool hit, Runs& runs,
-                   Part& part, Bits& bits) {
+bool Mapper::trace(const Vec3& a, const Vec3& b, VoxelLayer stop, bool first_is_end, bool hit,
+                   Runs& runs, Part& part, Bits& bits) {
   // Everything the loop touches is a local: the map's int8 writes may alias any memory, so
   // members, counters and the runs would otherwise be reloaded and stored at every voxel.
   std::int8_t* const logodds = logodds_.data();
@@ -85,7 +85,7 @@ bool Mapper::trace(const Vec3& a, const Vec3& b, bool first_is_end, bool hit, Ru
     ++updates;
     return add_once(logodds, touched, i, delta, lo, hi);
   };
-  const bool stopped = any_voxel_index_on_segment(geometry(), a, b, [&](std::size_t i) {
+  const bool stopped = any_voxel_index_on_segment(geometry(), a, b, stop, [&](std::size_t i) {
     ++visits;
     const bool seen = test_bit(touched, i);
     if (first_is_end) {
@@ -222,38 +222,50 @@ void Mapper::clear_bits(Bits& bits, int top_layers, int row_lo, int row_hi) cons
 void Mapper::merge_and_hit(End end, Part& part, Bits& bits) {
   std::uint64_t* const ended = bits.ended.data();
   std::uint64_t* const touched = bits.touched.data();
+  const Ray* const rays = rays_.data();
   for (Part& prepared : parts_) {  // in scan order: part 0 prepared the first half
     auto& list = prepared.ends[end];
+    std::uint32_t* const ids = list.data();
+    const std::size_t n = list.size();
+    // Kept or merged is a coin toss from ray to ray: written without a branch (always store,
+    // count only the kept), since a mispredicted branch per ray cost more than the loop's work.
     std::size_t kept = 0;
-    for (const std::uint32_t k : list) {
-      const Ray& ray = rays_[k];
-      if (test_bit(ended, ray.voxel)) continue;
-      set_bit(ended, ray.voxel);
-      list[kept++] = k;
+    for (std::size_t j = 0; j < n; ++j) {
+      const std::uint32_t k = ids[j];
+      const std::uint32_t v = rays[k].voxel;
+      std::uint64_t& word = ended[v >> 6];
+      const std::uint64_t bit = std::uint64_t{1} << (v & 63);
+      const bool first = (word & bit) == 0;
+      word |= bit;
+      ids[kept] = k;
+      kept += first ? 1U : 0U;
+    }
+    part.rays_merged += n - kept;
+    (void)list.resize(kept);
+    for (std::size_t j = 0; j < kept; ++j) {
+      const Ray& ray = rays[ids[j]];
       if (ray.hit && !test_bit(touched, ray.voxel)) {
         add_once(logodds_.data(), touched, ray.voxel, hit_, min_, max_);
         ++part.voxel_updates;
       }
     }
-    part.rays_merged += list.size() - kept;
-    (void)list.resize(kept);
   }
 }
 
 // One half of a scan: the rays that end on the low (side -1) or high (+1) side of the sensor's
-// slice, traced up to just before the slice; those that get there are resumed later, in
-// insert_scan. Rays ending in one half only ever cross voxels of that half or of the slice, so
-// the two halves can run at the same time.
+// slice, traced up to the slice (the traversal runs out of room in front of it: no division for
+// where the ray meets it); those that get there are resumed later, in insert_scan. Rays ending
+// in one half only ever cross voxels of that half or of the slice, so the two halves can run at
+// the same time.
 void Mapper::trace_half(const Vec3& origin, Cut cut, int side, Part& part, Bits& bits) {
   const End end = side < 0 ? kLow : kHigh;
   merge_and_hit(end, part, bits);
-  const double edge = slice_edge(geometry(), cut.axis, cut.cell, side) + side * kEdge_m;
+  const VoxelLayer slice{cut.axis, cut.cell};
   for (const Part& prepared : parts_) {
     for (const std::uint32_t k : prepared.ends[end]) {
       const Ray& ray = rays_[k];
       Runs runs;
-      if (trace(ray.end, point_at(ray.end, origin, cut.axis, edge), true, ray.hit, runs, part,
-                bits)) {
+      if (trace(ray.end, origin, slice, true, ray.hit, runs, part, bits)) {
         (void)part.resume.push_back({k, static_cast<std::uint8_t>(std::min(runs.unchanged, 255)),
                                      static_cast<std::uint8_t>(std::min(runs.crossed, 255))});
       }
@@ -328,7 +340,7 @@ void Mapper::insert_scan(const Pose3& sensor, const hal::LidarScanView& scan) {
   for (const Part& prepared : parts_) {
     for (const std::uint32_t k : prepared.ends[kSlice]) {
       Runs runs;
-      (void)trace(rays_[k].end, sensor.p, true, rays_[k].hit, runs, serial, bits);
+      (void)trace(rays_[k].end, sensor.p, VoxelLayer{}, true, rays_[k].hit, runs, serial, bits);
     }
   }
   for (int k = 0; k < 2; ++k) {
@@ -337,8 +349,8 @@ void Mapper::insert_scan(const Pose3& sensor, const hal::LidarScanView& scan) {
     for (const Part::Resume& r : parts_[static_cast<std::size_t>(k)].resume) {
       const Ray& ray = rays_[r.ray];
       Runs runs{r.unchanged, r.crossed};
-      (void)trace(point_at(ray.end, sensor.p, cut.axis, edge), sensor.p, false, false, runs, serial,
-                  bits);
+      (void)trace(point_at(ray.end, sensor.p, cut.axis, edge), sensor.p, VoxelLayer{}, false, false,
+                  runs, serial, bits);
       ++counters_.rays_resumed;
     }
   }

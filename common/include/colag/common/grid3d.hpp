@@ -1,9 +1,11 @@
 #pragma once
 // Geometry of the 3-D voxel grid (the UAV's map): world <-> voxel, row-major index with x
 // fastest, then y, then z (one horizontal layer is contiguous).
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <utility>
 
 #include "colag/common/geometry.hpp"
 #include "colag/common/grid2d.hpp"
@@ -54,14 +56,22 @@ class GridGeometry3d {
   int nx_, ny_, nz_;
 };
 
+// A layer of voxels a traversal stops in front of: those whose index along `axis` (0 x, 1 y,
+// 2 z) is `cell`. No axis: no such layer.
+struct VoxelLayer {
+  int axis = -1;
+  int cell = 0;
+};
+
 // Exact traversal (Amanatides-Woo) of the voxels the segment a -> b passes through, in order,
 // from a's voxel (which must be inside the grid) to b's voxel, or until the segment leaves the
-// grid. Calls visit(linear index); stops early and returns true when visit returns true.
+// grid or would step into `stop` (when a is not in it). Calls visit(linear index); stops early
+// and returns true when visit returns true.
 // The hot loop of the UAV's mapper: the linear index is stepped incrementally and the number
 // of steps is known up front, so each step is a comparison, two adds and the visit.
 template <class Visit>
 bool any_voxel_index_on_segment(const GridGeometry3d& g, const Vec3& a, const Vec3& b,
-                                Visit&& visit) {
+                                VoxelLayer stop, Visit&& visit) {
   const VoxelIndex v0 = g.voxel_of(a), v1 = g.voxel_of(b);
   const Vec3 d = b - a;
   const double res = g.resolution();
@@ -86,6 +96,16 @@ bool any_voxel_index_on_segment(const GridGeometry3d& g, const Vec3& a, const Ve
   Axis y = axis(d.y(), a.y(), g.origin_y(), v0.y, g.cells_y(), g.cells_x());
   Axis z = axis(d.z(), a.z(), g.origin_z(), v0.z, g.cells_z(),
                 static_cast<std::ptrdiff_t>(g.cells_x()) * g.cells_y());
+  // Stopping in front of a layer is running out of room towards it one cell early: no
+  // division for where the segment meets it.
+  const auto limit = [&](Axis& k, int cell) {
+    if (k.step == 0 || cell == stop.cell) return;
+    if ((k.step > 0) == (stop.cell > cell))
+      k.room = std::min(k.room, std::abs(stop.cell - cell) - 1);
+  };
+  if (stop.axis == 0) limit(x, v0.x);
+  if (stop.axis == 1) limit(y, v0.y);
+  if (stop.axis == 2) limit(z, v0.z);
   // Voxels to visit after the first: the steps to b's voxel (fewer if the grid ends first).
   int budget = std::abs(v1.x - v0.x) + std::abs(v1.y - v0.y) + std::abs(v1.z - v0.z);
   std::ptrdiff_t i = static_cast<std::ptrdiff_t>(g.index(v0));
@@ -104,6 +124,12 @@ bool any_voxel_index_on_segment(const GridGeometry3d& g, const Vec3& a, const Ve
                                            : (y.t_next < z.t_next ? advance(y) : advance(z));
     if (!moved) return false;
   }
+}
+
+template <class Visit>
+bool any_voxel_index_on_segment(const GridGeometry3d& g, const Vec3& a, const Vec3& b,
+                                Visit&& visit) {
+  return any_voxel_index_on_segment(g, a, b, VoxelLayer{}, std::forward<Visit>(visit));
 }
 
 // The same traversal, visiting VoxelIndex values (tests, tools).

@@ -136,9 +136,10 @@ class Mapper {
   // Merges the rays that end in `end` by end voxel and applies their hits.
   void merge_and_hit(End end, Part& part, Bits& bits);
   void trace_half(const Vec3& origin, Cut cut, int side, Part& part, Bits& bits);
-  // Back-traces a->b (a is the ray's end side); false if an early stop ended it.
-  bool trace(const Vec3& a, const Vec3& b, bool first_is_end, bool hit, Runs& runs, Part& part,
-             Bits& bits);
+  // Back-traces a->b (a is the ray's end side), stopping in front of `stop`; false if an early
+  // stop ended it.
+  bool trace(const Vec3& a, const Vec3& b, VoxelLayer stop, bool first_is_end, bool hit, Runs& runs,
+             Part& part, Bits& bits);
   // Sets voxel i's per-scan bit and adds `delta` to its log-odds, clamped to [lo, hi]; true if
   // the log-odds changed.
   static bool add_once(std::int8_t* logodds, std::uint64_t* touched, std::size_t i, int delta,
