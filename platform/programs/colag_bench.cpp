@@ -4,7 +4,7 @@
 //   colag_bench tables [--seeds K] [--jobs J] [--table 1|2|all] [--csv FILE] [--quick]
 //   colag_bench safety [--seeds K] [--jobs J] [--csv FILE] [--quick]
 //                                           the paper's Table I and II, measured
-//   colag_bench speed [--runs N] [--scenario S] [--ugvs N] [--seed S]
+//   colag_bench speed [--runs N] [--scenario S] [--ugvs N] [--seed S] [--baseline COLAG_SIM]
 //                                           the real-time factor of one mission, N times
 #include <CLI/CLI.hpp>
 #include <chrono>
@@ -92,6 +92,8 @@ int main(int argc, char** argv) {
   speed->add_option("--target", popt.target, "real-time factor the median should reach")
       ->check(CLI::PositiveNumber);
   speed->add_option("--sim", popt.sim, "colag_sim to run (default: next to colag_bench)");
+  speed->add_option("--baseline", popt.baseline,
+                    "another colag_sim to alternate with, run for run (A/B comparison)");
   CLI11_PARSE(app, argc, argv);
   if (*sched) return run_scheduler(instance, exact_max);
   if (*tables) return programs::run_tables(topt);
