@@ -127,26 +127,22 @@ TEST(VoxelTraversal, StopInFrontOfALayerVisitsThePrefixBeforeIt) {
     const VoxelIndex va = g.voxel_of(a), vb = g.voxel_of(b);
     const int axis = trial % 3;
     const auto along = [&](VoxelIndex v) { return axis == 0 ? v.x : (axis == 1 ? v.y : v.z); };
-    const auto index_of = [&](VoxelIndex v) { return g.index(v); };
-    std::vector<std::size_t> full, cut;
+    std::vector<VoxelIndex> full;
     any_voxel_on_segment(g, a, b, [&](VoxelIndex v) {
-      full.push_back(index_of(v));
+      full.push_back(v);
       return false;
     });
     // A layer between the ends (or the one b is in, or a's own: then no stop).
     const int lo = std::min(along(va), along(vb)), hi = std::max(along(va), along(vb));
     const int cell = lo + static_cast<int>(rng.uniform(0.0, 1.0) * (hi - lo + 1));
+    std::vector<std::size_t> cut, expected;
     any_voxel_index_on_segment(g, a, b, VoxelLayer{axis, cell}, [&](std::size_t i) {
       cut.push_back(i);
       return false;
     });
-    std::vector<std::size_t> expected;
-    for (const std::size_t i : full) {
-      const std::size_t layer = g.index({0, 0, 1});
-      const VoxelIndex v{static_cast<int>(i % layer % g.cells_x()),
-                         static_cast<int>(i % layer / g.cells_x()), static_cast<int>(i / layer)};
+    for (const VoxelIndex& v : full) {
       if (along(v) == cell && along(va) != cell) break;
-      expected.push_back(i);
+      expected.push_back(g.index(v));
     }
     EXPECT_EQ(cut, expected) << "trial " << trial << " axis " << axis << " cell " << cell;
     stopped_short += cut.size() < full.size();

@@ -233,10 +233,8 @@ void Mapper::merge_and_hit(End end, Part& part, Bits& bits) {
     for (std::size_t j = 0; j < n; ++j) {
       const std::uint32_t k = ids[j];
       const std::uint32_t v = rays[k].voxel;
-      std::uint64_t& word = ended[v >> 6];
-      const std::uint64_t bit = std::uint64_t{1} << (v & 63);
-      const bool first = (word & bit) == 0;
-      word |= bit;
+      const bool first = !test_bit(ended, v);
+      set_bit(ended, v);
       ids[kept] = k;
       kept += first ? 1U : 0U;
     }
