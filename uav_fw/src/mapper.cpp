@@ -111,21 +111,21 @@ bool Mapper::trace(const Vec3& a, const Vec3& b, VoxelLayer stop, bool first_is_
 }
 
 template <class F>
-void Mapper::both(F&& part) {
+void Mapper::in_parts(int parts, F&& part) {
   if (fork_join_ != nullptr) {
-    fork_join_->run(2, part);
+    fork_join_->run(parts, part);
   } else {
-    part(0);
-    part(1);
+    for (int i = 0; i < parts; ++i)
+      part(i);
   }
 }
 
-// Rays [from, to) of the scan (points, then misses) in world coordinates: cut at the maximum
+// The chunk's rays of the scan (points, then misses) in world coordinates: cut at the maximum
 // range and where they leave the mapped box (the grid's `top_layers` lowest layers), with their
 // end voxel, listed by where they end relative to the cut. Each ray is computed on its own, so
-// any split of the range gives the same rays.
+// any split into chunks gives the same rays.
 void Mapper::prepare(const Pose3& sensor, const hal::LidarScanView& scan, int top_layers, Cut cut,
-                     std::size_t from, std::size_t to, Part& part) {
+                     Chunk& chunk) {
   const auto& g = geometry();
   const Mat3 R = sensor.q.toRotationMatrix();
   const double inv_res = 1.0 / g.resolution();  // as GridGeometry3d::voxel_of computes
@@ -136,8 +136,11 @@ void Mapper::prepare(const Pose3& sensor, const hal::LidarScanView& scan, int to
   const std::size_t n_points = scan.points.size();
   const std::size_t stride_y = static_cast<std::size_t>(g.cells_x());
   const std::size_t stride_z = stride_y * static_cast<std::size_t>(g.cells_y());
-  for (auto& list : part.ends)
-    list.clear();
+  const std::size_t from = chunk.first, to = chunk.last;
+  std::array<std::uint32_t*, 3> lists{ends_of(kLow, chunk), ends_of(kHigh, chunk),
+                                      ends_of(kSlice, chunk)};
+  std::array<std::uint32_t, 3> count{};
+  std::uint64_t outside = 0;
   // The loop runs for every ray of every scan: scalar arithmetic in the order Eigen's would do
   // it (the same rounding), none read back from memory (a 16-byte load of two 8-byte stores just
   // made cannot be forwarded: Eigen's packets of the ray's end stalled this loop for a third of
@@ -165,7 +168,7 @@ void Mapper::prepare(const Pose3& sensor, const hal::LidarScanView& scan, int to
     if (!((ux >= 0.0) & (uy >= 0.0) & (uz >= 0.0) & (ux < size.x()) & (uy < size.y()) &
           (uz < size.z()))) {
       if (!std::isfinite(ux + uy + uz)) {
-        ++part.rays_outside;
+        ++outside;
         continue;
       }
       // Cut where the ray leaves the box: only the axes it leaves through need a division.
@@ -194,8 +197,10 @@ void Mapper::prepare(const Pose3& sensor, const hal::LidarScanView& scan, int to
                                            static_cast<std::size_t>(v.x));
     const int along = cut.axis == 0 ? v.x : v.y;
     const End end = along < cut.cell ? kLow : (along > cut.cell ? kHigh : kSlice);
-    (void)part.ends[end].push_back(static_cast<std::uint32_t>(k));
+    lists[end][count[end]++] = static_cast<std::uint32_t>(k);
   }
+  chunk.count = count;
+  chunk.rays_outside = outside;
 }
 
 void Mapper::clear_bits(Bits& bits, int top_layers, int row_lo, int row_hi) const {
@@ -223,10 +228,9 @@ void Mapper::merge_and_hit(End end, Part& part, Bits& bits) {
   std::uint64_t* const ended = bits.ended.data();
   std::uint64_t* const touched = bits.touched.data();
   const Ray* const rays = rays_.data();
-  for (Part& prepared : parts_) {  // in scan order: part 0 prepared the first half
-    auto& list = prepared.ends[end];
-    std::uint32_t* const ids = list.data();
-    const std::size_t n = list.size();
+  for (Chunk& chunk : chunks_) {  // in scan order
+    std::uint32_t* const ids = ends_of(end, chunk);
+    const std::size_t n = chunk.count[end];
     // Kept or merged is a coin toss from ray to ray: written without a branch (always store,
     // count only the kept), since a mispredicted branch per ray cost more than the loop's work.
     std::size_t kept = 0;
@@ -239,7 +243,7 @@ void Mapper::merge_and_hit(End end, Part& part, Bits& bits) {
       kept += first ? 1U : 0U;
     }
     part.rays_merged += n - kept;
-    (void)list.resize(kept);
+    chunk.count[end] = static_cast<std::uint32_t>(kept);
     for (std::size_t j = 0; j < kept; ++j) {
       const Ray& ray = rays[ids[j]];
       if (ray.hit && !test_bit(touched, ray.voxel)) {
@@ -259,8 +263,10 @@ void Mapper::trace_half(const Vec3& origin, Cut cut, int side, Part& part, Bits&
   const End end = side < 0 ? kLow : kHigh;
   merge_and_hit(end, part, bits);
   const VoxelLayer slice{cut.axis, cut.cell};
-  for (const Part& prepared : parts_) {
-    for (const std::uint32_t k : prepared.ends[end]) {
+  for (const Chunk& chunk : chunks_) {
+    const std::uint32_t* const ids = ends_of(end, chunk);
+    for (std::uint32_t j = 0; j < chunk.count[end]; ++j) {
+      const std::uint32_t k = ids[j];
       const Ray& ray = rays_[k];
       Runs runs;
       if (trace(ray.end, origin, slice, true, ray.hit, runs, part, bits)) {
@@ -285,7 +291,11 @@ void Mapper::insert_scan(const Pose3& sensor, const hal::LidarScanView& scan) {
   (void)rays_.resize(n);
   for (Part& part : parts_) {
     part.resume.clear();
-    part.rays_outside = part.rays_merged = part.voxel_updates = part.voxel_visits = 0;
+    part.rays_merged = part.voxel_updates = part.voxel_visits = 0;
+  }
+  for (int c = 0; c < kChunks; ++c) {
+    chunks_[static_cast<std::size_t>(c)].first = static_cast<std::uint32_t>(n * c / kChunks);
+    chunks_[static_cast<std::size_t>(c)].last = static_cast<std::uint32_t>(n * (c + 1) / kChunks);
   }
 
   // The layers mapped: up to the ceiling (rounded up to a voxel boundary), at least up to the
@@ -318,25 +328,27 @@ void Mapper::insert_scan(const Pose3& sensor, const hal::LidarScanView& scan) {
   counters_.scans_by_column += cut.axis == 0 ? 1U : 0U;
 
   // 1. Clear the per-scan bits (each half its own, where its rays can reach; half 0's also
-  // cover the sensor's slice) and compute the rays, each part a half of them.
-  both([&](int k) {
+  // cover the sensor's slice: the first two chunks do it) and compute the rays, by chunk.
+  in_parts(kChunks, [&](int c) {
     const int row = sensor_voxel.y;
-    if (cut.axis == 1) {
-      clear_bits(bits_[k], top_layers, k == 0 ? row - reach_ : row + 1,
-                 k == 0 ? row : row + reach_);
-    } else {
-      clear_bits(bits_[k], top_layers, row - reach_, row + reach_);
+    if (c < 2 && cut.axis == 1) {
+      clear_bits(bits_[c], top_layers, c == 0 ? row - reach_ : row + 1,
+                 c == 0 ? row : row + reach_);
+    } else if (c < 2) {
+      clear_bits(bits_[c], top_layers, row - reach_, row + reach_);
     }
-    prepare(sensor, scan, top_layers, cut, k == 0 ? 0 : n / 2, k == 0 ? n / 2 : n, parts_[k]);
+    prepare(sensor, scan, top_layers, cut, chunks_[static_cast<std::size_t>(c)]);
   });
   // 2. The halves on both sides of the sensor's slice.
-  both([&](int k) { trace_half(sensor.p, cut, k == 0 ? -1 : 1, parts_[k], bits_[k]); });
+  in_parts(2, [&](int k) { trace_half(sensor.p, cut, k == 0 ? -1 : 1, parts_[k], bits_[k]); });
   // 3. The slice: the rays that end in it, then the rest of those that reached it.
   Part& serial = parts_[0];
   Bits& bits = bits_[0];
   merge_and_hit(kSlice, serial, bits);
-  for (const Part& prepared : parts_) {
-    for (const std::uint32_t k : prepared.ends[kSlice]) {
+  for (const Chunk& chunk : chunks_) {
+    const std::uint32_t* const ids = ends_of(kSlice, chunk);
+    for (std::uint32_t j = 0; j < chunk.count[kSlice]; ++j) {
+      const std::uint32_t k = ids[j];
       Runs runs;
       (void)trace(rays_[k].end, sensor.p, VoxelLayer{}, true, rays_[k].hit, runs, serial, bits);
     }
@@ -352,9 +364,12 @@ void Mapper::insert_scan(const Pose3& sensor, const hal::LidarScanView& scan) {
       ++counters_.rays_resumed;
     }
   }
-  counters_.rays += n - parts_[0].rays_outside - parts_[1].rays_outside;
+  counters_.rays += n;
+  for (const Chunk& chunk : chunks_) {
+    counters_.rays -= chunk.rays_outside;
+    counters_.rays_outside += chunk.rays_outside;
+  }
   for (const Part& part : parts_) {
-    counters_.rays_outside += part.rays_outside;
     counters_.rays_merged += part.rays_merged;
     counters_.voxel_updates += part.voxel_updates;
     counters_.voxel_visits += part.voxel_visits;

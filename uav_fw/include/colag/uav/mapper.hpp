@@ -113,24 +113,33 @@ class Mapper {
   struct Bits {
     std::array<std::uint64_t, (limits::kGridCells3d + 63) / 64> touched, ended;
   };
-  // What one part of a scan's insertion did: each prepares half of the rays, then traces one
-  // half of the scan (part 0 also counts the serial work on the sensor's slice).
+  // The rays are prepared in chunks of consecutive rays, claimed by whichever core is free:
+  // misses cost more than returns (most leave the mapped box), so equal halves of the scan
+  // took unequal times. Chunk c lists the usable rays it prepared, by End and in scan order,
+  // in ends_[End][first_c, first_c + count[End]) (indices into rays_); merging drops the merged
+  // ones in place, leaving the rays to trace.
+  static constexpr int kChunks = 8;
+  struct alignas(64) Chunk {            // aligned: chunks are written at the same time
+    std::uint32_t first = 0, last = 0;  // its rays [first, last)
+    std::array<std::uint32_t, 3> count{};
+    std::uint64_t rays_outside = 0;
+  };
+  // What one half of a scan's tracing did (part 0 also counts the serial work on the slice).
   struct alignas(64) Part {  // aligned: the two halves write their own Part at the same time
-    // The usable rays this part prepared, by End, in scan order (indices into rays_); merging
-    // drops the merged ones in place, leaving the rays to trace.
-    std::array<StaticVector<std::uint32_t, (limits::kMaxLidarPoints + 1) / 2>, 3> ends;
     struct Resume {
       std::uint32_t ray = 0;
       std::uint8_t unchanged = 0, crossed = 0;  // the early-stop runs where the ray stopped
     };
     StaticVector<Resume, limits::kMaxLidarPoints> resume;  // rays that reached the slice
-    std::uint64_t rays_outside = 0, rays_merged = 0, voxel_updates = 0, voxel_visits = 0;
+    std::uint64_t rays_merged = 0, voxel_updates = 0, voxel_visits = 0;
   };
   struct Runs {
     int unchanged = 0, crossed = 0;
   };
   void prepare(const Pose3& sensor, const hal::LidarScanView& scan, int top_layers, Cut cut,
-               std::size_t from, std::size_t to, Part& part);
+               Chunk& chunk);
+  // The rays of chunk c that end in `end` (a view into ends_).
+  std::uint32_t* ends_of(End end, const Chunk& c) { return ends_[end].data() + c.first; }
   // Clears the bits of the layers below `top_layers` that the rays of this scan can reach.
   void clear_bits(Bits& bits, int top_layers, int row_lo, int row_hi) const;
   // Merges the rays that end in `end` by end voxel and applies their hits.
@@ -144,9 +153,9 @@ class Mapper {
   // the log-odds changed.
   static bool add_once(std::int8_t* logodds, std::uint64_t* touched, std::size_t i, int delta,
                        int lo, int hi);
-  // Runs part(0) and part(1), at the same time when the platform gave us a fork-join.
+  // Runs part(0) .. part(parts - 1), at the same time when the platform gave us a fork-join.
   template <class F>
-  void both(F&& part);
+  void in_parts(int parts, F&& part);
 
   MapperConfig config_;
   ForkJoin* fork_join_;
@@ -156,6 +165,8 @@ class Mapper {
   std::array<std::int8_t, limits::kGridCells3d> logodds_;
   std::array<Bits, 2> bits_;                         // half k's; the slice uses half 0's
   StaticVector<Ray, limits::kMaxLidarPoints> rays_;  // the scan being inserted
+  std::array<Chunk, kChunks> chunks_;
+  std::array<std::array<std::uint32_t, limits::kMaxLidarPoints>, 3> ends_;  // see Chunk
   std::array<Part, 2> parts_;
   Vec3 last_sensor_ = Vec3::Zero();  // where the previous scan was taken
   int last_axis_ = 1;
