@@ -9,6 +9,9 @@ Status Schedule::add(const TaskEntry& entry) {
   if (entry.period <= Duration::zero()) return {Errc::kInvalidArgument, "task period must be > 0"};
   if (entry.budget <= Duration::zero()) return {Errc::kInvalidArgument, "task budget must be > 0"};
   if (entry.offset < Duration::zero()) return {Errc::kInvalidArgument, "task offset must be >= 0"};
+  if (entry.lane < 0) return {Errc::kInvalidArgument, "task lane must be >= 0"};
+  if (!rows_.empty() && entry.lane < rows_.back().entry.lane)
+    return {Errc::kInvalidArgument, "task lanes must not decrease along the table"};
   Row row;
   row.entry = entry;
   row.stats.name = entry.task->name();

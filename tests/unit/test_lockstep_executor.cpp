@@ -3,10 +3,15 @@
 #include <string>
 #include <vector>
 
+#include <algorithm>
+#include <mutex>
+
 #include "colag/hal/scripted/scripted_devices.hpp"
+#include "colag/platform/lane_outbox.hpp"
 #include "colag/platform/lockstep_executor.hpp"
 #include "colag/platform/loopback_transport.hpp"
 #include "colag/platform/readers.hpp"
+#include "colag/platform/worker_pool.hpp"
 
 using namespace colag;
 using namespace colag::platform;
@@ -143,15 +148,31 @@ class Chatter final : public Task {
   std::uint32_t counter_ = 0;
 };
 
-std::vector<std::uint64_t> run_chatter(std::uint64_t seed) {
+class FlushInOrder final : public LaneBarrier {
+ public:
+  void lanes_done(TimePoint) override {
+    for (LaneOutbox* o : outboxes)
+      o->flush();
+  }
+  std::vector<LaneOutbox*> outboxes;
+};
+
+// With `lanes`, each chatter is a lane of its own and publishes through an outbox.
+std::vector<std::uint64_t> run_chatter(std::uint64_t seed, ForkJoin* lanes = nullptr) {
   auto bus = std::make_unique<LoopbackTransport>(seed);
   bus->set_faults({0.2, 15ms, 40ms, 0.1});
   TransportPump pump(*bus);
-  Chatter x(*bus, 1), y(*bus, 2);
+  LaneOutbox out_x(*bus), out_y(*bus);
+  const bool laned = lanes != nullptr;
+  Chatter x(laned ? static_cast<Transport&>(out_x) : *bus, 1);
+  Chatter y(laned ? static_cast<Transport&>(out_y) : *bus, 2);
+  FlushInOrder flush;
+  flush.outboxes = {&out_x, &out_y};
   LockstepExecutor ex;
+  if (laned) ex.set_lanes(lanes, &flush);
   EXPECT_TRUE(ex.add({&pump, 5ms, 1ms}));
-  EXPECT_TRUE(ex.add({&x, 10ms, 1ms}));
-  EXPECT_TRUE(ex.add({&y, 15ms, 1ms, 2ms}));
+  EXPECT_TRUE(ex.add({&x, 10ms, 1ms, 0ms, laned ? 1 : 0}));
+  EXPECT_TRUE(ex.add({&y, 10ms, 1ms, 0ms, laned ? 2 : 0}));
   EXPECT_TRUE(ex.init());
   ex.run_until(TimePoint{3s});
   std::vector<std::uint64_t> all = x.heard;
@@ -167,4 +188,77 @@ TEST(LockstepExecutor, SameSeedSameRunThroughAFaultyNetwork) {
   EXPECT_GT(first.size(), 500u);
   EXPECT_EQ(first, second);
   EXPECT_NE(first, other);
+}
+
+// Both chatters publish at the same instants, so the order in which their samples reach the
+// network decides who hears what when: lanes running side by side, flushed in lane order, must
+// give the same run (a flush in the other order does not: tried).
+TEST(LockstepExecutor, LanesOnTwoThreadsSameRunAsTheTableInOrder) {
+  const auto in_order = run_chatter(11);
+  EXPECT_GT(in_order.size(), 500u);
+  WorkerPool pool(1);
+  EXPECT_EQ(run_chatter(11, &pool), in_order);
+  SerialForkJoin serial;
+  EXPECT_EQ(run_chatter(11, &serial), in_order);
+}
+
+namespace {
+class LockedLog final : public Task {
+ public:
+  LockedLog(std::string name, std::vector<std::string>& log, std::mutex& m)
+      : name_(std::move(name)), log_(log), mutex_(m) {}
+  const char* name() const override { return name_.c_str(); }
+  void step(TimePoint) override {
+    const std::lock_guard lock(mutex_);
+    log_.push_back(name_);
+  }
+
+ private:
+  std::string name_;
+  std::vector<std::string>& log_;
+  std::mutex& mutex_;
+};
+class LoggingBarrier final : public LaneBarrier {
+ public:
+  LoggingBarrier(std::vector<std::string>& log, std::mutex& m) : log_(log), mutex_(m) {}
+  void lanes_done(TimePoint) override {
+    const std::lock_guard lock(mutex_);
+    log_.push_back("|");
+  }
+
+ private:
+  std::vector<std::string>& log_;
+  std::mutex& mutex_;
+};
+}  // namespace
+
+TEST(LockstepExecutor, LaneZeroFirstThenEachLaneInTableOrderThenTheBarrier) {
+  std::vector<std::string> log;
+  std::mutex m;
+  LockedLog world("world", log, m), a1("a1", log, m), a2("a2", log, m), b1("b1", log, m),
+      b2("b2", log, m);
+  LoggingBarrier barrier(log, m);
+  WorkerPool pool(1);
+  LockstepExecutor ex;
+  ex.set_lanes(&pool, &barrier);
+  ASSERT_TRUE(ex.add({&world, 10ms, 1ms}));
+  ASSERT_TRUE(ex.add({&a1, 10ms, 1ms, 0ms, 1}));
+  ASSERT_TRUE(ex.add({&a2, 20ms, 1ms, 0ms, 1}));
+  ASSERT_TRUE(ex.add({&b1, 10ms, 1ms, 0ms, 2}));
+  ASSERT_TRUE(ex.add({&b2, 10ms, 1ms, 0ms, 2}));
+  EXPECT_EQ(ex.add({&world, 10ms, 1ms, 0ms, 1}).code(), Errc::kInvalidArgument);  // decreasing
+  EXPECT_EQ(ex.add({&world, 10ms, 1ms, 0ms, -1}).code(), Errc::kInvalidArgument);
+  ASSERT_TRUE(ex.init());
+  for (int instant = 0; instant < 4; ++instant) {
+    log.clear();
+    ex.step();
+    ASSERT_EQ(log.size(), instant % 2 == 0 ? 6u : 5u) << instant;
+    EXPECT_EQ(log.front(), "world");
+    EXPECT_EQ(log.back(), "|");
+    const auto at = [&](const std::string& n) { return std::find(log.begin(), log.end(), n); };
+    EXPECT_LT(at("b1"), at("b2"));
+    if (instant % 2 == 0) {
+      EXPECT_LT(at("a1"), at("a2"));
+    }
+  }
 }

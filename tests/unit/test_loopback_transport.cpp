@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "allocation_counter.hpp"
+#include "colag/platform/lane_outbox.hpp"
 #include "colag/platform/loopback_transport.hpp"
 #include "colag/platform/readers.hpp"
 
@@ -204,4 +205,29 @@ TEST_F(LoopbackTest, PublishAndPollAllocateNothing) {
   }
   EXPECT_EQ(counter.count(), 0u);
   EXPECT_GT(statuses.updates(), 800u);
+}
+
+TEST_F(LoopbackTest, LaneOutboxKeepsSamplesUntilFlushedThenPublishesThemInOrder) {
+  LaneOutbox outbox(*bus);
+  Recorder rec;
+  ASSERT_TRUE(outbox.subscribe(msg::Topic::kUgvStatus, kAnyRobot, rec));  // on the shared bus
+  for (std::uint32_t n = 0; n < limits::kLaneOutboxSamples; ++n)
+    ASSERT_TRUE(outbox.publish(status(1, n)));
+  EXPECT_EQ(outbox.publish(status(1, 99)).code(), Errc::kCapacityExceeded);
+  EXPECT_EQ(outbox.publish(msg::Topic::kUgvStatus, nullptr).code(), Errc::kInvalidArgument);
+  outbox.poll(TimePoint{1ms});  // polling is the pump's job
+  bus->poll(TimePoint{1ms});
+  EXPECT_TRUE(rec.seen.empty());
+  EXPECT_EQ(bus->stats().published, 0u);
+
+  outbox.flush();
+  EXPECT_EQ(outbox.size(), 0u);
+  bus->poll(TimePoint{2ms});
+  std::vector<std::uint32_t> expected;
+  for (std::uint32_t n = 0; n < limits::kLaneOutboxSamples; ++n)
+    expected.push_back(n);
+  EXPECT_EQ(rec.seen, expected);
+  EXPECT_EQ(outbox.stats().published, limits::kLaneOutboxSamples);
+  EXPECT_EQ(outbox.stats().overflowed, 1u);
+  EXPECT_EQ(outbox.stats().rejected, 1u);
 }

@@ -11,6 +11,7 @@
 #include "colag/hal/can/can_wheel_odometry.hpp"
 #include "colag/mock/pcd_loader.hpp"
 #include "colag/mock/sim_world.hpp"
+#include "colag/platform/lane_outbox.hpp"
 #include "colag/platform/lockstep_executor.hpp"
 #include "colag/platform/loopback_transport.hpp"
 #include "colag/platform/monotonic_clock.hpp"
@@ -160,6 +161,17 @@ class SelfPerceptionTask final : public platform::Task {
   uav::MapSharer sharer_;
 };
 
+// After the UGV lanes ran: their samples go onto the bus in lane order, as if the UGVs' tasks
+// had run one after the other.
+class FlushOutboxes final : public platform::LaneBarrier {
+ public:
+  void lanes_done(TimePoint) override {
+    for (platform::LaneOutbox* o : outboxes)
+      o->flush();
+  }
+  std::vector<platform::LaneOutbox*> outboxes;
+};
+
 // Listens to the support requests (for the figure and the per-UGV counts).
 class SupportLog final : public platform::SampleSink {
  public:
@@ -274,8 +286,10 @@ Result<MissionOutcome> run_mission(const MissionConfig& cfg, MissionTrace* trace
     reference = std::make_unique<ReferenceFrameTask>(*bus);
   }
 
-  // The UGVs, each behind its own CAN link.
+  // The UGVs, each behind its own CAN link, each publishing through its own outbox: a UGV's
+  // tasks are a lane of the executor, the UGVs' lanes run side by side on the worker pool.
   struct UgvStack {
+    std::unique_ptr<platform::LaneOutbox> outbox;
     std::unique_ptr<hal::can::CanWheelOdometry> odometry;
     std::unique_ptr<hal::can::CanDrive> drive;
     std::unique_ptr<ugv::UgvNavTask> task;
@@ -303,11 +317,21 @@ Result<MissionOutcome> run_mission(const MissionConfig& cfg, MissionTrace* trace
                                                               wc.ugv.geometry);
     s.drive =
         std::make_unique<hal::can::CanDrive>(world->ugv_can(i), wc.ugv.protocol, wc.ugv.geometry);
-    s.task = std::make_unique<ugv::UgvNavTask>(nc, *bus, *s.odometry, *s.drive);
-    if (cfg.self_perception) s.perception = std::make_unique<SelfPerceptionTask>(*bus, *world, i);
+    s.outbox = std::make_unique<platform::LaneOutbox>(*bus);
+    s.task = std::make_unique<ugv::UgvNavTask>(nc, *s.outbox, *s.odometry, *s.drive);
+    if (cfg.self_perception)
+      s.perception = std::make_unique<SelfPerceptionTask>(*s.outbox, *world, i);
   }
+  FlushOutboxes flush;
+  for (const UgvStack& s : ugvs)
+    flush.outboxes.push_back(s.outbox.get());
+  ex->set_lanes(&pool, &flush);
 
-  // The executor table: transport, world, UAV loops, UGV loops (planning staggered by 10 ms).
+  // The executor table: transport, world, UAV loops, then each UGV's loops in its own lane
+  // (planning staggered by 10 ms). Planning at the same instants would let the lanes plan side
+  // by side, but two UGVs then decide at the same moment from each other's status of 100 ms
+  // ago; in the 5-seed tables that let two self-perception UGVs collide and two ColAG missions
+  // leave a UGV short of its goal, so the stagger stays until the UGV-UGV rule is symmetric-safe.
   if (uav) {
     if (st) st = ex->add({&uav->control_loop(), 20ms, 5ms});
     if (st) st = ex->add({&uav->mapping_loop(), 100ms, 20ms});
@@ -317,9 +341,10 @@ Result<MissionOutcome> run_mission(const MissionConfig& cfg, MissionTrace* trace
   if (reference && st) st = ex->add({reference.get(), 20ms, 1ms});
   for (int i = 0; i < cfg.ugvs && st; ++i) {
     UgvStack& s = ugvs[static_cast<std::size_t>(i)];
-    st = ex->add({&s.task->control_loop(), 20ms, 2ms});
-    if (st) st = ex->add({&s.task->planning_loop(), 100ms, 10ms, Duration{(i % 10) * 10ms}});
-    if (st && s.perception) st = ex->add({s.perception.get(), 50ms, 10ms});
+    const int lane = i + 1;
+    st = ex->add({&s.task->control_loop(), 20ms, 2ms, Duration{}, lane});
+    if (st) st = ex->add({&s.task->planning_loop(), 100ms, 10ms, Duration{(i % 10) * 10ms}, lane});
+    if (st && s.perception) st = ex->add({s.perception.get(), 50ms, 10ms, Duration{}, lane});
   }
   SupportLog support(cfg.ugvs);
   support.trace = trace;

@@ -54,5 +54,6 @@ inline constexpr std::size_t kMaxSubscriptions = 128;        // per transport in
 inline constexpr std::size_t kLoopbackMaxInFlight = 512;     // samples held by the loopback
 inline constexpr std::size_t kLoopbackMaxDeliveries = 4096;  // (sample, subscriber) pairs pending
 inline constexpr std::size_t kDefaultReaderDepth = 8;
+inline constexpr std::size_t kLaneOutboxSamples = 8;  // one simulated robot's samples per instant
 
 }  // namespace colag::limits

@@ -54,6 +54,10 @@ struct TaskEntry {
   Duration period{};
   Duration budget{};  // a step longer than this is an overrun
   Duration offset{};  // first release at start + offset
+  // Simulation only: a robot simulated beside others runs in its own lane (see
+  // LockstepExecutor). 0, the default, is the lane of everything else. The real-time executor
+  // runs one robot and ignores lanes.
+  int lane = 0;
 };
 
 }  // namespace colag::platform
