@@ -108,6 +108,29 @@ TEST(CollisionPredictor, AnotherRobotAheadIsARobotConflictNotAMapOne) {
   EXPECT_NEAR(p.point.x(), 3.3, 0.11);  // where the discs first overlap
 }
 
+TEST(CollisionPredictor, AnotherRobotCuttingAcrossIsFollowedAlongItsVelocity) {
+  auto map = std::make_unique<MapStore>();
+  ASSERT_TRUE(test::fill_map(*map, -3, -3, 13, 3, [](const Vec2&) { return CellState::kFree; }));
+  PredictorConfig cfg;
+  cfg.horizon_m = 10.0;
+  CollisionPredictor predictor(cfg, forward_noise_only());
+  Prediction p;
+  // 2 m to the side of our path: standing there it is no danger; driving north at our speed
+  // it reaches our path where we do, after about 4 s; driving south it never does.
+  for (const double vy : {0.0, 0.5, -0.5}) {
+    const OtherRobot other{Vec2(2.0, -2.0), 0.55, Vec2(0.0, vy)};
+    predictor.predict({Vec2(0, 0.05), 0.0}, Mat3::Zero(), straight_trajectory(), 0, *map,
+                      {&other, 1}, p);
+    if (vy > 0.0) {
+      ASSERT_EQ(p.kind, CollisionKind::kRobot);
+      EXPECT_NEAR(p.point.x(), 2.0, 0.6);
+      EXPECT_NEAR(p.time_s, 4.0, 1.3);
+    } else {
+      EXPECT_EQ(p.kind, CollisionKind::kNone) << vy;
+    }
+  }
+}
+
 TEST(CollisionPredictor, GoingFurtherIntoUnknownIsACollisionAtTheFirstStep) {
   // The robot's ellipse already touches the inflated unknown: that is excused (it is there),
   // but the very next step touches new unknown-blocked cells.

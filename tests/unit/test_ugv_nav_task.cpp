@@ -259,10 +259,16 @@ TEST(UgvNavTask, RejectsAndCountsBadMessagesWithoutHarm) {
   bad_status.stamp = rig.ex.now();
   bad_status.ugv_id = 200;
   ASSERT_TRUE(rig.bus->publish(bad_status));
+  msg::UgvStatus bad_velocity;  // a UGV right ahead whose velocity would sweep it away
+  bad_velocity.stamp = rig.ex.now();
+  bad_velocity.ugv_id = 3;
+  bad_velocity.position_m[0] = 2.0;
+  bad_velocity.velocity_mps = std::numeric_limits<double>::infinity();
+  ASSERT_TRUE(rig.bus->publish(bad_velocity));
   rig.ex.run_until(rig.ex.now() + 200ms);
   EXPECT_EQ(rig.ugv->health().rpe_rejected, 2u);
   EXPECT_EQ(rig.ugv->health().patches_rejected, 1u);
-  EXPECT_EQ(rig.ugv->health().statuses_rejected, 1u);
+  EXPECT_EQ(rig.ugv->health().statuses_rejected, 2u);
   ASSERT_TRUE(rig.run_until([&] { return rig.ugv->mode() == msg::UgvMode::kArrived; }, 30s));
 }
 

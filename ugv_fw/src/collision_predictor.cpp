@@ -5,7 +5,7 @@
 
 namespace colag::ugv {
 
-CollisionKind CollisionPredictor::check(const Ellipse& e, const MapStore& map,
+CollisionKind CollisionPredictor::check(const Ellipse& e, double t, const MapStore& map,
                                         std::span<const OtherRobot> others,
                                         double closest_allowed_m) const {
   const auto& g = map.geometry();
@@ -30,7 +30,7 @@ CollisionKind CollisionPredictor::check(const Ellipse& e, const MapStore& map,
     return CollisionKind::kMap;
   }
   for (const OtherRobot& o : others) {
-    if ((o.p - e.center).norm() <= a + o.radius_m) return CollisionKind::kRobot;
+    if ((o.p + t * o.v - e.center).norm() <= a + o.radius_m) return CollisionKind::kRobot;
   }
   return CollisionKind::kNone;
 }
@@ -62,7 +62,7 @@ void CollisionPredictor::predict(const Pose2& pose, const Mat3& covariance, cons
     const Ellipse e = sigma_ellipse(centre, P.topLeftCorner<2, 2>(), k);
     (void)out.ellipses.push_back(e);
     const CollisionKind kind =
-        overflow ? CollisionKind::kMap : check(e, map, others, closest_allowed);
+        overflow ? CollisionKind::kMap : check(e, t, map, others, closest_allowed);
     if (kind == CollisionKind::kNone) return false;
     out.kind = kind;
     out.point = centre;

@@ -18,6 +18,8 @@ double sigma_major(const Mat2& cov) {
 
 bool finite_status(const msg::UgvStatus& s) {
   if (!std::isfinite(s.position_m[0]) || !std::isfinite(s.position_m[1])) return false;
+  // The velocity moves the UGV's disc in the collision prediction: a bad one would hide it.
+  if (!std::isfinite(s.yaw_rad) || !(std::abs(s.velocity_mps) <= 5.0)) return false;
   for (double c : s.covariance) {
     if (!std::isfinite(c)) return false;
   }
@@ -240,7 +242,11 @@ void UgvNavTask::collect_others(TimePoint now) {
   const Vec2 me = ekf_.pose().p;
   for (const OtherUgv& o : others_) {
     if (!o.known || now - o.heard > config_.other_ugv_timeout) continue;
-    const Vec2 p(o.status.position_m[0], o.status.position_m[1]);
+    // Where it is now, having kept its reported velocity since its status was stamped.
+    const Vec2 v =
+        o.status.velocity_mps * Vec2(std::cos(o.status.yaw_rad), std::sin(o.status.yaw_rad));
+    const double age = std::clamp(to_seconds(now - o.status.stamp), 0.0, 0.5);
+    const Vec2 p = Vec2(o.status.position_m[0], o.status.position_m[1]) + age * v;
     if ((p - me).norm() > config_.other_ugv_range_m) continue;
     Mat2 cov;
     cov << o.status.covariance[0], o.status.covariance[1], o.status.covariance[3],
@@ -248,7 +254,7 @@ void UgvNavTask::collect_others(TimePoint now) {
     const double extent =
         std::min(3.0 * sigma_major(cov), 2.0);  // capped: a lost robot is not a wall
     (void)others_predict_.push_back(
-        {p, config_.map.predict_inflation_m + config_.body_radius_m + extent});
+        {p, config_.map.predict_inflation_m + config_.body_radius_m + extent, v});
     (void)others_plan_.push_back(
         {p, config_.map.plan_inflation_m + config_.body_radius_m + extent});
   }

@@ -327,11 +327,9 @@ Result<MissionOutcome> run_mission(const MissionConfig& cfg, MissionTrace* trace
     flush.outboxes.push_back(s.outbox.get());
   ex->set_lanes(&pool, &flush);
 
-  // The executor table: transport, world, UAV loops, then each UGV's loops in its own lane
-  // (planning staggered by 10 ms). Planning at the same instants would let the lanes plan side
-  // by side, but two UGVs then decide at the same moment from each other's status of 100 ms
-  // ago; in the 5-seed tables that let two self-perception UGVs collide and two ColAG missions
-  // leave a UGV short of its goal, so the stagger stays until the UGV-UGV rule is symmetric-safe.
+  // The executor table: transport, world, UAV loops, then each UGV's loops in its own lane.
+  // The UGVs plan at the same instants (each has its own computer: nothing keeps their loops
+  // apart, and the firmware must be safe when they line up), so the lanes plan side by side.
   if (uav) {
     if (st) st = ex->add({&uav->control_loop(), 20ms, 5ms});
     if (st) st = ex->add({&uav->mapping_loop(), 100ms, 20ms});
@@ -343,7 +341,7 @@ Result<MissionOutcome> run_mission(const MissionConfig& cfg, MissionTrace* trace
     UgvStack& s = ugvs[static_cast<std::size_t>(i)];
     const int lane = i + 1;
     st = ex->add({&s.task->control_loop(), 20ms, 2ms, Duration{}, lane});
-    if (st) st = ex->add({&s.task->planning_loop(), 100ms, 10ms, Duration{(i % 10) * 10ms}, lane});
+    if (st) st = ex->add({&s.task->planning_loop(), 100ms, 10ms, Duration{}, lane});
     if (st && s.perception) st = ex->add({s.perception.get(), 50ms, 10ms, Duration{}, lane});
   }
   SupportLog support(cfg.ugvs);

@@ -33,10 +33,13 @@ struct PredictorConfig {
   bool use_uncertainty = true;  // false: the ablation "collision check on the mean only"
 };
 
-// Another UGV as the predictor sees it: a disc around its estimated position.
+// Another UGV as the predictor sees it: a disc around its estimated position, moving on at its
+// reported velocity (a disc that stood still hid a UGV cutting across from a converging lane
+// until the bodies touched).
 struct OtherRobot {
   Vec2 p = Vec2::Zero();
   double radius_m = 0.0;  // both bodies + its 3-sigma extent + margin
+  Vec2 v = Vec2::Zero();  // m/s, world frame
 };
 
 enum class CollisionKind : std::uint8_t { kNone, kMap, kRobot };
@@ -69,8 +72,8 @@ class CollisionPredictor {
  private:
   // Which obstacle, if any, the ellipse touches: a blocked cell not in excused_ that is near
   // unknown, or near occupied with the ellipse closer than `closest_allowed_m` to it.
-  CollisionKind check(const Ellipse& e, const MapStore& map, std::span<const OtherRobot> others,
-                      double closest_allowed_m) const;
+  CollisionKind check(const Ellipse& e, double t, const MapStore& map,
+                      std::span<const OtherRobot> others, double closest_allowed_m) const;
 
   static constexpr std::size_t kMaxExcused = 8192;
   static constexpr double kDistanceSearch_m = 1.0;
