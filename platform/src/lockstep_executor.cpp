@@ -38,14 +38,15 @@ TimePoint LockstepExecutor::step() {
   released_lanes_.clear();
   Duration expected = Duration::zero();
   while (i < n) {
-    const Rows lane{i, i};
+    const std::size_t begin = i;
+    const int lane = schedule_.entry(i).lane;
     bool released = false;
-    for (; i < n && schedule_.entry(i).lane == schedule_.entry(lane.begin).lane; ++i) {
+    for (; i < n && schedule_.entry(i).lane == lane; ++i) {
       if (schedule_.release_of(i) != t) continue;
       released = true;
       expected += mean_step(i);
     }
-    if (released) (void)released_lanes_.push_back({lane.begin, i});
+    if (released) (void)released_lanes_.push_back({begin, i});
   }
   if (released_lanes_.empty()) return t;
   const auto run_lane = [&](int k) {

@@ -137,8 +137,8 @@ void Mapper::prepare(const Pose3& sensor, const hal::LidarScanView& scan, int to
   const std::size_t stride_y = static_cast<std::size_t>(g.cells_x());
   const std::size_t stride_z = stride_y * static_cast<std::size_t>(g.cells_y());
   const std::size_t from = chunk.first, to = chunk.last;
-  std::array<std::uint32_t*, 3> lists{ends_of(kLow, chunk), ends_of(kHigh, chunk),
-                                      ends_of(kSlice, chunk)};
+  std::array<std::uint32_t*, 3> lists{ends_[kLow].data() + from, ends_[kHigh].data() + from,
+                                      ends_[kSlice].data() + from};
   std::array<std::uint32_t, 3> count{};
   std::uint64_t outside = 0;
   // The loop runs for every ray of every scan: scalar arithmetic in the order Eigen's would do
@@ -229,8 +229,9 @@ void Mapper::merge_and_hit(End end, Part& part, Bits& bits) {
   std::uint64_t* const touched = bits.touched.data();
   const Ray* const rays = rays_.data();
   for (Chunk& chunk : chunks_) {  // in scan order
-    std::uint32_t* const ids = ends_of(end, chunk);
-    const std::size_t n = chunk.count[end];
+    const std::span<std::uint32_t> list = ends_of(end, chunk);
+    std::uint32_t* const ids = list.data();
+    const std::size_t n = list.size();
     // Kept or merged is a coin toss from ray to ray: written without a branch (always store,
     // count only the kept), since a mispredicted branch per ray cost more than the loop's work.
     std::size_t kept = 0;
@@ -264,9 +265,7 @@ void Mapper::trace_half(const Vec3& origin, Cut cut, int side, Part& part, Bits&
   merge_and_hit(end, part, bits);
   const VoxelLayer slice{cut.axis, cut.cell};
   for (const Chunk& chunk : chunks_) {
-    const std::uint32_t* const ids = ends_of(end, chunk);
-    for (std::uint32_t j = 0; j < chunk.count[end]; ++j) {
-      const std::uint32_t k = ids[j];
+    for (const std::uint32_t k : ends_of(end, chunk)) {
       const Ray& ray = rays_[k];
       Runs runs;
       if (trace(ray.end, origin, slice, true, ray.hit, runs, part, bits)) {
@@ -331,11 +330,13 @@ void Mapper::insert_scan(const Pose3& sensor, const hal::LidarScanView& scan) {
   // cover the sensor's slice: the first two chunks do it) and compute the rays, by chunk.
   in_parts(kChunks, [&](int c) {
     const int row = sensor_voxel.y;
-    if (c < 2 && cut.axis == 1) {
-      clear_bits(bits_[c], top_layers, c == 0 ? row - reach_ : row + 1,
-                 c == 0 ? row : row + reach_);
-    } else if (c < 2) {
-      clear_bits(bits_[c], top_layers, row - reach_, row + reach_);
+    if (c < 2) {
+      if (cut.axis == 1) {
+        clear_bits(bits_[c], top_layers, c == 0 ? row - reach_ : row + 1,
+                   c == 0 ? row : row + reach_);
+      } else {
+        clear_bits(bits_[c], top_layers, row - reach_, row + reach_);
+      }
     }
     prepare(sensor, scan, top_layers, cut, chunks_[static_cast<std::size_t>(c)]);
   });
@@ -346,9 +347,7 @@ void Mapper::insert_scan(const Pose3& sensor, const hal::LidarScanView& scan) {
   Bits& bits = bits_[0];
   merge_and_hit(kSlice, serial, bits);
   for (const Chunk& chunk : chunks_) {
-    const std::uint32_t* const ids = ends_of(kSlice, chunk);
-    for (std::uint32_t j = 0; j < chunk.count[kSlice]; ++j) {
-      const std::uint32_t k = ids[j];
+    for (const std::uint32_t k : ends_of(kSlice, chunk)) {
       Runs runs;
       (void)trace(rays_[k].end, sensor.p, VoxelLayer{}, true, rays_[k].hit, runs, serial, bits);
     }

@@ -16,10 +16,14 @@ double sigma_major(const Mat2& cov) {
   return std::sqrt(std::max(0.0, l));
 }
 
+// Faster than any UGV drives: a status claiming more is corrupt.
+constexpr double kMaxPlausibleSpeed_mps = 5.0;
+
 bool finite_status(const msg::UgvStatus& s) {
   if (!std::isfinite(s.position_m[0]) || !std::isfinite(s.position_m[1])) return false;
   // The velocity moves the UGV's disc in the collision prediction: a bad one would hide it.
-  if (!std::isfinite(s.yaw_rad) || !(std::abs(s.velocity_mps) <= 5.0)) return false;
+  if (!std::isfinite(s.yaw_rad) || !(std::abs(s.velocity_mps) <= kMaxPlausibleSpeed_mps))
+    return false;
   for (double c : s.covariance) {
     if (!std::isfinite(c)) return false;
   }

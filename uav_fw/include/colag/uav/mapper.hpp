@@ -19,6 +19,7 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <span>
 
 #include "colag/common/fork_join.hpp"
 #include "colag/common/grid3d.hpp"
@@ -138,8 +139,10 @@ class Mapper {
   };
   void prepare(const Pose3& sensor, const hal::LidarScanView& scan, int top_layers, Cut cut,
                Chunk& chunk);
-  // The rays of chunk c that end in `end` (a view into ends_).
-  std::uint32_t* ends_of(End end, const Chunk& c) { return ends_[end].data() + c.first; }
+  // The rays of chunk c that end in `end` (a view into ends_; after prepare).
+  std::span<std::uint32_t> ends_of(End end, const Chunk& c) {
+    return {ends_[end].data() + c.first, c.count[end]};
+  }
   // Clears the bits of the layers below `top_layers` that the rays of this scan can reach.
   void clear_bits(Bits& bits, int top_layers, int row_lo, int row_hi) const;
   // Merges the rays that end in `end` by end voxel and applies their hits.
