@@ -4,7 +4,7 @@
 
 #include <array>
 
-#include "colag/linux/tag_pose_estimator.hpp"
+#include "colag/hal/linux/tag_pose_estimator.hpp"
 #include "tag_scene.hpp"
 
 namespace {

@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "colag/common/random.hpp"
-#include "colag/mock/lidar_simulator.hpp"
 #include "colag/platform/worker_pool.hpp"
+#include "colag/sim/world/lidar_simulator.hpp"
 #include "colag/uav/map_sharer.hpp"
 #include "colag/uav/mapper.hpp"
 #include "colag/uav/scheduler.hpp"
@@ -24,10 +24,10 @@ namespace {
 
 struct Scene {
   Scene() {
-    mock::MapGenConfig cfg;
+    sim::MapGenConfig cfg;
     cfg.boxes = 80;
-    world = mock::generate_box_world(cfg).value();
-    lidar = std::make_unique<mock::LidarSimulator>();
+    world = sim::generate_box_world(cfg).value();
+    lidar = std::make_unique<sim::LidarSimulator>();
     map = std::make_unique<Mapper>();
     // Pre-map along a flight so the patch benchmark sees a realistic mix of cells.
     for (double y = 15; y > -15; y -= 1.5)
@@ -39,8 +39,8 @@ struct Scene {
     lidar->scan(world, pose, pts, misses);
     map->insert_scan(pose, {TimePoint{}, 8.0F, pts, misses});
   }
-  mock::BoxWorld world;
-  std::unique_ptr<mock::LidarSimulator> lidar;
+  sim::BoxWorld world;
+  std::unique_ptr<sim::LidarSimulator> lidar;
   std::unique_ptr<Mapper> map;
 };
 
@@ -89,7 +89,7 @@ BENCHMARK(BM_ScanInsertion)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseR
 void BM_LidarSimulation(benchmark::State& state) {  // the mock, for the simulator's budget
   auto& s = scene();
   platform::WorkerPool pool(static_cast<int>(state.range(0)) - 1);
-  mock::LidarSimulator lidar({}, &pool);
+  sim::LidarSimulator lidar({}, &pool);
   const Pose3 pose{Vec3(0.3, 2.0, 1.0), Quat::Identity()};
   std::span<const hal::LidarPoint> pts, misses;
   for (auto _ : state)

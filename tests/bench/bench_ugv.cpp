@@ -21,14 +21,14 @@ namespace {
 
 struct DenseScene {
   DenseScene() {
-    mock::MapGenConfig cfg;
+    sim::MapGenConfig cfg;
     cfg.boxes = 80;
     cfg.seed = 1;
     world = generate_box_world(cfg).value();
     map = std::make_unique<MapStore>();
     test::fill_map_from_world(*map, world, -14.4, -17.6, 14.4, 17.6);
   }
-  mock::BoxWorld world;
+  sim::BoxWorld world;
   std::unique_ptr<MapStore> map;
 };
 

@@ -5,20 +5,20 @@
 #include <string>
 #include <vector>
 
-#include "colag/mock/pcd_loader.hpp"
+#include "colag/sim/world/pcd_loader.hpp"
 #include "fuzz_input.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string bytes(reinterpret_cast<const char*>(data), size);
   std::vector<colag::Vec3> points;
   std::string error;
-  if (!colag::mock::parse_pcd(bytes, points, error)) {
+  if (!colag::sim::parse_pcd(bytes, points, error)) {
     COLAG_FUZZ_CHECK(!error.empty());
     return 0;
   }
   for (const auto& p : points)
     COLAG_FUZZ_CHECK(p.allFinite());
-  const colag::mock::BoxWorld world = colag::mock::box_world_from_points(points);
+  const colag::sim::BoxWorld world = colag::sim::box_world_from_points(points);
   for (const auto& b : world.boxes) {
     COLAG_FUZZ_CHECK(b.center.allFinite() && b.half_size.allFinite() && std::isfinite(b.height_m));
     COLAG_FUZZ_CHECK(b.half_size.x() > 0.0 && b.half_size.y() > 0.0 && b.height_m > 0.0);

@@ -3,8 +3,8 @@
 // one holds values inside the documented ranges.
 #include <string>
 
-#include "colag/board/uav_board_config.hpp"
-#include "colag/board/ugv_board_config.hpp"
+#include "colag/uav/app/uav_config.hpp"
+#include "colag/ugv/app/ugv_config.hpp"
 #include "fuzz_input.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -12,8 +12,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string text(reinterpret_cast<const char*>(data) + 1, size - 1);
   std::string error;
   if (data[0] & 1) {
-    colag::board::UgvBoardConfig c;
-    if (colag::board::parse_ugv_config(text, "fuzz.yaml", c, error)) {
+    colag::ugv::UgvBoardConfig c;
+    if (colag::ugv::parse_ugv_config(text, "fuzz.yaml", c, error)) {
       COLAG_FUZZ_CHECK(error.empty());
       COLAG_FUZZ_CHECK(c.nav.id < colag::limits::kMaxUgvs);
       COLAG_FUZZ_CHECK(c.wheels.wheel_radius_m > 0.0 && c.wheels.track_width_m > 0.0);
@@ -28,8 +28,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     // input to fuzz.
     for (const char* special : {"dev/", "proc/", "sys/"})
       if (text.find(special) != std::string::npos) return 0;
-    colag::board::UavBoardConfig c;
-    if (colag::board::parse_uav_config(text, "fuzz/uav.yaml", c, error)) {
+    colag::uav::UavBoardConfig c;
+    if (colag::uav::parse_uav_config(text, "fuzz/uav.yaml", c, error)) {
       COLAG_FUZZ_CHECK(error.empty());
       COLAG_FUZZ_CHECK(c.common.dds_domain <= 232);
     } else {

@@ -15,11 +15,11 @@
 #include <string>
 
 #include "colag/hal/can/can_wheel_odometry.hpp"
+#include "colag/hal/linux/socketcan_bus.hpp"
 #include "colag/hal/scripted/scripted_devices.hpp"
-#include "colag/linux/socketcan_bus.hpp"
-#include "colag/mock/sim_can_link.hpp"
-#include "colag/mock/ugv_body.hpp"
+#include "colag/hal/sim/can_link.hpp"
 #include "colag/platform/realtime_executor.hpp"
+#include "colag/sim/world/ugv_body.hpp"
 
 namespace {
 using namespace colag;
@@ -84,12 +84,12 @@ struct Reference {
 };
 Reference reference() {
   hal::scripted::ManualClock clock;
-  mock::SimCanLink link(clock);
+  hal::sim::SimCanLink link(clock);
   hal::can::CanDrive drive(link.board(), {}, {});
-  mock::UgvBodyConfig cfg;
+  sim::UgvBodyConfig cfg;
   cfg.motion_noise_fraction = 0.0;
   cfg.odometry_noise = {};
-  mock::UgvBody body(cfg, Pose2{}, 1);
+  sim::UgvBody body(cfg, Pose2{}, 1);
   hal::CanFrame f;
   for (int k = 0; k < 250; ++k) {  // 5 s at 50 Hz
     hal::DriveCommand c = profile(k * 0.02);

@@ -8,9 +8,9 @@
 #include <string>
 #include <thread>
 
-#include "colag/linux/socketcan_bus.hpp"
-#include "colag/mock/ugv_body.hpp"
+#include "colag/hal/linux/socketcan_bus.hpp"
 #include "colag/platform/monotonic_clock.hpp"
+#include "colag/sim/world/ugv_body.hpp"
 
 int main(int argc, char** argv) {
   using namespace colag;
@@ -35,9 +35,9 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "motor emulator: %s\n", s.message());
     return 1;
   }
-  mock::UgvBodyConfig body_cfg;
+  sim::UgvBodyConfig body_cfg;
   body_cfg.motion_noise_fraction = 0.0;  // a deterministic wheel model; encoder noise stays
-  mock::UgvBody body(body_cfg, Pose2{}, 7);
+  sim::UgvBody body(body_cfg, Pose2{}, 7);
   const Duration period = std::chrono::milliseconds(20);
   const TimePoint start = clock.now();
   TimePoint next = start;

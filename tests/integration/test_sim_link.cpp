@@ -10,9 +10,9 @@
 
 #include "colag/hal/can/can_wheel_odometry.hpp"
 #include "colag/hal/scripted/scripted_devices.hpp"
-#include "colag/mock/sim_world.hpp"
-#include "colag/sim/sim_devices.hpp"
-#include "colag/sim/world_bridge.hpp"
+#include "colag/hal/sim/sim_devices.hpp"
+#include "colag/sim/bridge/world_bridge.hpp"
+#include "colag/sim/world/sim_world.hpp"
 #include "dds_test_env.hpp"
 
 using namespace colag;
@@ -21,7 +21,7 @@ using namespace std::chrono_literals;
 namespace {
 
 // Steps the world (50 Hz of simulated time per call) and the bridge until `done`, or 10 s.
-bool run_until(mock::SimWorld& world, sim::WorldBridge& bridge, hal::scripted::ManualClock& clock,
+bool run_until(sim::SimWorld& world, sim::WorldBridge& bridge, hal::scripted::ManualClock& clock,
                const std::function<void()>& robot_side, const std::function<bool()>& done) {
   const auto deadline = std::chrono::steady_clock::now() + 10s;
   while (std::chrono::steady_clock::now() < deadline) {
@@ -39,21 +39,21 @@ TEST(SimLink, EveryDeviceCrossesDdsBetweenTheWorldAndTheRobots) {
   test::confine_dds_to_loopback();
   const std::uint32_t domain = test::private_domain_id();
   hal::scripted::ManualClock clock;
-  mock::BoxWorld boxes;
+  sim::BoxWorld boxes;
   boxes.boxes.push_back({Vec2(3, 0), Vec2(0.4, 0.4), 0.6});
-  mock::SimWorldConfig wc;
+  sim::SimWorldConfig wc;
   wc.lidar.columns = 360;
-  mock::SimWorld world(wc, boxes, clock);
+  sim::SimWorld world(wc, boxes, clock);
   world.add_ugv({Vec2(0, 0), 0.0});
   world.add_uav(Vec3(0, 0, 1.5));
 
-  sim::SimLink world_link, ugv_link, uav_link;
-  ASSERT_TRUE(world_link.init(domain, sim::SimLink::Side::kWorld));
-  ASSERT_TRUE(ugv_link.init(domain, sim::SimLink::Side::kUgv, 0));
-  ASSERT_TRUE(uav_link.init(domain, sim::SimLink::Side::kUav));
+  hal::sim::SimLink world_link, ugv_link, uav_link;
+  ASSERT_TRUE(world_link.init(domain, hal::sim::SimLink::Side::kWorld));
+  ASSERT_TRUE(ugv_link.init(domain, hal::sim::SimLink::Side::kUgv, 0));
+  ASSERT_TRUE(uav_link.init(domain, hal::sim::SimLink::Side::kUav));
   sim::WorldBridge bridge(world_link, world, true);
-  sim::SimCanBus bus(ugv_link, 0);
-  sim::SimUavDevices uav(uav_link);
+  hal::sim::SimCanBus bus(ugv_link, 0);
+  hal::sim::SimUavDevices uav(uav_link);
 
   // The UGV: the real CAN drivers on the sim bus. Drive forward until the body has moved.
   hal::can::CanWheelOdometry odometry(bus, wc.ugv.protocol, wc.ugv.geometry);

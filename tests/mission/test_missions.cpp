@@ -2,7 +2,7 @@
 // each). What the paper's system must do, and what its ablation must fail to do.
 #include <gtest/gtest.h>
 
-#include "colag/mission/mission.hpp"
+#include "colag/sim/mission/mission.hpp"
 
 using namespace colag;
 using namespace colag::mission;

@@ -2,12 +2,12 @@
 // Test helper: what a UGV's map looks like when the UAV has mapped a box world perfectly
 // inside a window: cells overlapping a box footprint are occupied, the rest of the window is
 // free, everything outside it stays unknown.
-#include "colag/mock/box_world.hpp"
+#include "colag/sim/world/box_world.hpp"
 #include "map_fixtures.hpp"
 
 namespace colag::test {
 
-inline bool fill_map_from_world(MapStore& map, const mock::BoxWorld& world, double x0, double y0,
+inline bool fill_map_from_world(MapStore& map, const sim::BoxWorld& world, double x0, double y0,
                                 double x1, double y1) {
   const double h = 0.5 * map.geometry().resolution();
   return fill_map(map, x0, y0, x1, y1, [&](const Vec2& p) {

@@ -5,7 +5,7 @@
 #include <memory>
 #include <vector>
 
-#include "colag/mock/lidar_simulator.hpp"
+#include "colag/sim/world/lidar_simulator.hpp"
 #include "colag/uav/mapper.hpp"
 
 namespace colag::test {
@@ -13,10 +13,10 @@ namespace colag::test {
 // Scans of the dense map from each pose, each inserted into every map given.
 inline void scan_dense_map(const std::vector<Pose3>& poses,
                            std::initializer_list<uav::Mapper*> maps) {
-  mock::MapGenConfig gen;
+  sim::MapGenConfig gen;
   gen.boxes = 80;
-  const mock::BoxWorld world = mock::generate_box_world(gen).value();
-  auto lidar = std::make_unique<mock::LidarSimulator>();
+  const sim::BoxWorld world = sim::generate_box_world(gen).value();
+  auto lidar = std::make_unique<sim::LidarSimulator>();
   for (const Pose3& pose : poses) {
     std::span<const hal::LidarPoint> points, misses;
     lidar->scan(world, pose, points, misses);

@@ -8,7 +8,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "colag/linux/camera_model.hpp"
+#include "colag/hal/linux/camera_model.hpp"
 
 namespace colag::test {
 

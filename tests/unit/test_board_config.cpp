@@ -5,10 +5,14 @@
 #include <filesystem>
 #include <fstream>
 
-#include "colag/board/uav_board_config.hpp"
-#include "colag/board/ugv_board_config.hpp"
+#include "colag/uav/app/uav_config.hpp"
+#include "colag/ugv/app/ugv_config.hpp"
 
 namespace colag::board {
+using uav::load_uav_config;
+using uav::UavBoardConfig;
+using ugv::load_ugv_config;
+using ugv::UgvBoardConfig;
 namespace {
 
 class BoardConfig : public ::testing::Test {

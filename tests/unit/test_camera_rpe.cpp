@@ -9,7 +9,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <thread>
 
-#include "colag/linux/camera_rpe.hpp"
+#include "colag/hal/linux/camera_rpe.hpp"
 #include "tag_scene.hpp"
 
 namespace colag::linux_hal {

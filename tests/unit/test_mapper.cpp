@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "colag/common/random.hpp"
-#include "colag/mock/lidar_simulator.hpp"
 #include "colag/platform/worker_pool.hpp"
+#include "colag/sim/world/lidar_simulator.hpp"
 #include "colag/uav/mapper.hpp"
 #include "dense_scans.hpp"
 
@@ -151,9 +151,9 @@ TEST(VoxelTraversal, StopInFrontOfALayerVisitsThePrefixBeforeIt) {
 }
 
 TEST(Mapper, ScanOfOneBoxOccupiedFacesFreeFrontUnknownShadow) {
-  mock::BoxWorld world;
+  sim::BoxWorld world;
   world.boxes.push_back({Vec2(3.0, 0.0), Vec2(0.45, 0.45), 0.6});
-  auto lidar = std::make_unique<mock::LidarSimulator>();
+  auto lidar = std::make_unique<sim::LidarSimulator>();
   auto map = std::make_unique<Mapper>();
   const Pose3 sensor{Vec3(0.02, 0.03, 1.0), Quat::Identity()};
   std::span<const hal::LidarPoint> points, misses;
@@ -284,11 +284,11 @@ TEST(Mapper, RowAndColumnCutsMapTheSameObstacles) {
 // The halves of a scan touch disjoint voxels, so running them on two threads must give the very
 // same map as running them one after the other (the wandering flight cuts by rows and columns).
 TEST(Mapper, SameMapOnOneThreadAndOnTwo) {
-  mock::MapGenConfig gen;
+  sim::MapGenConfig gen;
   gen.boxes = 80;
   gen.seed = 3;
-  const mock::BoxWorld world = mock::generate_box_world(gen).value();
-  auto lidar = std::make_unique<mock::LidarSimulator>();
+  const sim::BoxWorld world = sim::generate_box_world(gen).value();
+  auto lidar = std::make_unique<sim::LidarSimulator>();
   platform::WorkerPool pool(1);
   auto one = std::make_unique<Mapper>();
   auto two = std::make_unique<Mapper>(MapperConfig{}, &pool);

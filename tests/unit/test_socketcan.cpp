@@ -13,7 +13,7 @@
 #include <thread>
 
 #include "can_bus_conformance.hpp"
-#include "colag/linux/socketcan_bus.hpp"
+#include "colag/hal/linux/socketcan_bus.hpp"
 #include "colag/platform/monotonic_clock.hpp"
 
 namespace colag::test {

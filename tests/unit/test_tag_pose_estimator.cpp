@@ -6,7 +6,7 @@
 #include <numbers>
 #include <opencv2/imgproc.hpp>
 
-#include "colag/linux/tag_pose_estimator.hpp"
+#include "colag/hal/linux/tag_pose_estimator.hpp"
 #include "tag_scene.hpp"
 
 namespace colag::linux_hal {

@@ -7,9 +7,9 @@
 
 #include "allocation_counter.hpp"
 #include "colag/hal/scripted/scripted_devices.hpp"
-#include "colag/mock/lidar_simulator.hpp"
 #include "colag/platform/lockstep_executor.hpp"
 #include "colag/platform/loopback_transport.hpp"
+#include "colag/sim/world/lidar_simulator.hpp"
 #include "colag/uav/rpe_relay.hpp"
 #include "colag/uav/uav_supervisor_task.hpp"
 
@@ -25,13 +25,13 @@ class Sky final : public platform::Task {
  public:
   Sky(hal::scripted::ScriptedOdometrySource& odom, hal::scripted::ScriptedLidar& lidar,
       hal::scripted::ScriptedRelativePoseSensor& camera,
-      hal::scripted::RecordingFlightController& fc, const mock::BoxWorld& world)
+      hal::scripted::RecordingFlightController& fc, const sim::BoxWorld& world)
       : odom_(odom),
         lidar_(lidar),
         camera_(camera),
         fc_(fc),
         world_(world),
-        sim_(std::make_unique<mock::LidarSimulator>()) {}
+        sim_(std::make_unique<sim::LidarSimulator>()) {}
   const char* name() const override { return "sky"; }
   void step(TimePoint now) override {
     const double dt = 0.02;
@@ -75,8 +75,8 @@ class Sky final : public platform::Task {
   hal::scripted::ScriptedLidar& lidar_;
   hal::scripted::ScriptedRelativePoseSensor& camera_;
   hal::scripted::RecordingFlightController& fc_;
-  const mock::BoxWorld& world_;
-  std::unique_ptr<mock::LidarSimulator> sim_;
+  const sim::BoxWorld& world_;
+  std::unique_ptr<sim::LidarSimulator> sim_;
   int ticks_ = 0;
 };
 
@@ -92,10 +92,10 @@ class Collect final : public platform::SampleSink {
 
 struct Rig {
   Rig() {
-    mock::MapGenConfig cfg;
+    sim::MapGenConfig cfg;
     cfg.boxes = 40;
     cfg.seed = 3;
-    world = mock::generate_box_world(cfg).value();
+    world = sim::generate_box_world(cfg).value();
     bus = std::make_unique<platform::LoopbackTransport>(1);
     lidar = std::make_unique<hal::scripted::ScriptedLidar>();
     sky = std::make_unique<Sky>(odom, *lidar, camera, fc, world);
@@ -138,7 +138,7 @@ struct Rig {
   }
   double distance_to(Vec2 q) const { return (sky->p.head<2>() - q).norm(); }
 
-  mock::BoxWorld world;
+  sim::BoxWorld world;
   hal::scripted::ScriptedOdometrySource odom;
   std::unique_ptr<hal::scripted::ScriptedLidar> lidar;
   hal::scripted::ScriptedRelativePoseSensor camera;

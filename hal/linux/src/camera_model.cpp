@@ -1,4 +1,4 @@
-#include "colag/linux/camera_model.hpp"
+#include "colag/hal/linux/camera_model.hpp"
 
 #include <fstream>
 

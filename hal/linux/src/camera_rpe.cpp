@@ -1,4 +1,4 @@
-#include "colag/linux/camera_rpe.hpp"
+#include "colag/hal/linux/camera_rpe.hpp"
 
 #include <algorithm>
 #include <cctype>

@@ -1,4 +1,4 @@
-#include "colag/linux/socketcan_bus.hpp"
+#include "colag/hal/linux/socketcan_bus.hpp"
 
 #include <linux/can.h>
 #include <linux/can/error.h>

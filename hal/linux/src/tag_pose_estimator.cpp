@@ -1,4 +1,4 @@
-#include "colag/linux/tag_pose_estimator.hpp"
+#include "colag/hal/linux/tag_pose_estimator.hpp"
 
 #include <algorithm>
 #include <cmath>

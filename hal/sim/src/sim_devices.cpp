@@ -1,12 +1,12 @@
-#include "colag/sim/sim_devices.hpp"
+#include "colag/hal/sim/sim_devices.hpp"
 
 #include <algorithm>
 #include <cmath>
 
+#include "colag/hal/sim/take_one.hpp"
 #include "sim.h"
-#include "take_one.hpp"
 
-namespace colag::sim {
+namespace colag::hal::sim {
 
 Status SimCanBus::send(const hal::CanFrame& frame, TimePoint) {
   if (!hal::is_valid(frame)) {
@@ -128,4 +128,4 @@ std::size_t SimUavDevices::poll(std::span<hal::RelativePoseDetection> out) {
   return got ? n : 0;
 }
 
-}  // namespace colag::sim
+}  // namespace colag::hal::sim

@@ -1,8 +1,8 @@
-#include "colag/sim/sim_link.hpp"
+#include "colag/hal/sim/sim_link.hpp"
 
 #include "sim.h"
 
-namespace colag::sim {
+namespace colag::hal::sim {
 
 namespace {
 
@@ -86,4 +86,4 @@ Status SimLink::init(std::uint32_t sim_domain, Side side, RobotId robot) {
   return s;
 }
 
-}  // namespace colag::sim
+}  // namespace colag::hal::sim

@@ -1,7 +1,7 @@
 #pragma once
 // Scripted test doubles of every HAL interface, for unit tests of task code only: a test queues
 // what the device "measures" and inspects what the task commanded. No heap: fixed queues.
-// The simulated world (hal/mock/) is a different thing: it computes measurements from physics.
+// The simulated world (sim/world/) is a different thing: it computes measurements from physics.
 #include <algorithm>
 #include <array>
 #include <cstddef>

@@ -1,0 +1,134 @@
+#pragma once
+// Reading the board programs' YAML: typed values by key path, the first error kept as
+// "FILE: key.path: problem", unknown keys reported. The robots' section readers use it.
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <set>
+#include <string>
+
+#include "colag/common/time.hpp"
+
+namespace colag::board {
+
+// node[key] without yaml-cpp's surprises: absent (not null) when the node or the key is missing.
+inline YAML::Node child(const YAML::Node& node, const char* key) {
+  if (node && node.IsMap() && node[key]) return node[key];
+  return YAML::Node(YAML::NodeType::Undefined);
+}
+
+// Walks a YAML document, reading typed values by key path and keeping the first error.
+class Reader {
+ public:
+  Reader(const std::string& file, std::string& error) : file_(file), error_(error) {}
+
+  bool ok() const { return error_.empty(); }
+  const std::string& file() const { return file_; }
+  void fail(const std::string& key, const std::string& problem) {
+    if (ok()) error_ = file_ + ": " + key + ": " + problem;
+  }
+
+  // Checks that `node` (a map or absent) has only `allowed` keys.
+  void only(const YAML::Node& node, const std::string& path, std::set<std::string> allowed) {
+    if (!node) return;
+    if (!node.IsMap()) return fail(path.empty() ? "(top level)" : path, "expected a mapping");
+    for (const auto& kv : node) {
+      if (!kv.first.IsScalar())
+        return fail(path.empty() ? "(top level)" : path, "a key is not a name");
+      const std::string key = kv.first.as<std::string>();
+      if (allowed.count(key) == 0) fail(join(path, key), "unknown key");
+    }
+  }
+
+  template <class T>
+  void get(const YAML::Node& node, const std::string& path, const char* key, T& out, T lo, T hi) {
+    const YAML::Node v = child(node, key);
+    if (!v) return;
+    T value{};
+    try {
+      value = v.as<T>();
+    } catch (const YAML::Exception&) {
+      return fail(join(path, key), std::string("expected ") + kind<T>());
+    }
+    if (!(value >= lo && value <= hi)) {
+      return fail(join(path, key), "out of range [" + show(lo) + ", " + show(hi) + "]");
+    }
+    out = value;
+  }
+  void get(const YAML::Node& node, const std::string& path, const char* key, std::string& out) {
+    const YAML::Node v = child(node, key);
+    if (!v) return;
+    if (!v.IsScalar()) return fail(join(path, key), "expected a string");
+    out = v.as<std::string>();
+  }
+  void get(const YAML::Node& node, const std::string& path, const char* key, bool& out) {
+    const YAML::Node v = child(node, key);
+    if (!v) return;
+    try {
+      out = v.as<bool>();
+    } catch (const YAML::Exception&) {
+      fail(join(path, key), "expected true or false");
+    }
+  }
+  // A period given as a rate in Hz.
+  void rate(const YAML::Node& node, const std::string& path, const char* key, Duration& out) {
+    double hz = 0.0;
+    const bool present = static_cast<bool>(child(node, key));
+    get(node, path, key, hz, 0.1, 1000.0);
+    if (present && ok()) out = period_of_hz(hz);
+  }
+  void millis(const YAML::Node& node, const std::string& path, const char* key, Duration& out,
+              double lo, double hi) {
+    double ms = to_seconds(out) * 1e3;
+    get(node, path, key, ms, lo, hi);
+    out = seconds(ms / 1e3);
+  }
+  // [x, y] or [x, y, z] (n values).
+  bool vector(const YAML::Node& node, const std::string& path, const char* key, double* out,
+              std::size_t n) {
+    const YAML::Node v = child(node, key);
+    if (!v) return false;
+    if (!v.IsSequence() || v.size() != n) {
+      fail(join(path, key), "expected a list of " + std::to_string(n) + " numbers");
+      return false;
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      try {
+        out[i] = v[i].as<double>();
+      } catch (const YAML::Exception&) {
+        fail(join(path, key), "expected a list of " + std::to_string(n) + " numbers");
+        return false;
+      }
+      if (!std::isfinite(out[i])) fail(join(path, key), "not finite");
+    }
+    return ok();
+  }
+
+ private:
+  static std::string join(const std::string& path, const std::string& key) {
+    return path.empty() ? key : path + "." + key;
+  }
+  template <class T>
+  static const char* kind() {
+    if constexpr (std::is_integral_v<T>) return "an integer";
+    return "a number";
+  }
+  template <class T>
+  static std::string show(T v) {
+    if constexpr (std::is_floating_point_v<T>) {
+      std::string s = std::to_string(v);
+      s.erase(s.find_last_not_of('0') + 1);
+      if (s.back() == '.') s.pop_back();
+      return s;
+    } else {
+      return std::to_string(v);
+    }
+  }
+  std::string file_;
+  std::string& error_;
+};
+
+// A path from a configuration file: relative paths are relative to the file's directory.
+std::string relative_to(const std::string& config_file, const std::string& path);
+
+}  // namespace colag::board

@@ -1,0 +1,64 @@
+#include "colag/board/config.hpp"
+
+#include <utility>
+
+namespace colag::board {
+
+bool load_document(const std::string& name, const std::string* text, YAML::Node& doc,
+                   std::string& error) {
+  try {
+    doc = text != nullptr ? YAML::Load(*text) : YAML::LoadFile(name);
+  } catch (const YAML::BadFile&) {
+    error = name + ": cannot open the configuration file";
+    return false;
+  } catch (const YAML::Exception& e) {
+    error = name + ": line " + std::to_string(e.mark.line + 1) + ": " + e.msg;
+    return false;
+  }
+  if (doc.IsNull()) doc = YAML::Node(YAML::NodeType::Map);  // an empty file: all defaults
+  return true;
+}
+
+std::string relative_to(const std::string& config_file, const std::string& path) {
+  if (path.empty() || path[0] == '/') return path;
+  const auto slash = config_file.find_last_of('/');
+  return slash == std::string::npos ? path : config_file.substr(0, slash + 1) + path;
+}
+
+void read_common(Reader& r, const YAML::Node& doc, const std::vector<std::string>& robot_sections,
+                 CommonBoardConfig& c) {
+  std::set<std::string> sections(robot_sections.begin(), robot_sections.end());
+  sections.insert({"dds", "realtime"});
+  r.only(doc, "", sections);
+  const YAML::Node dds = child(doc, "dds");
+  r.only(dds, "dds", {"domain", "partition", "security"});
+  r.get(dds, "dds", "domain", c.dds_domain, 0u, 232u);  // DDS allows domain ids 0..232
+  r.get(dds, "dds", "partition", c.dds_partition);
+  // dds.security: the files scripts/security/make-pki writes for this robot.
+  const YAML::Node sec = child(dds, "security");
+  r.only(sec, "dds.security",
+         {"identity_ca", "certificate", "private_key", "permissions_ca", "governance",
+          "permissions", "plugin_dir"});
+  platform::DdsSecurityConfig& s = c.dds_security;
+  const std::pair<const char*, std::string*> files[] = {
+      {"identity_ca", &s.identity_ca}, {"certificate", &s.certificate},
+      {"private_key", &s.private_key}, {"permissions_ca", &s.permissions_ca},
+      {"governance", &s.governance},   {"permissions", &s.permissions},
+  };
+  for (const auto& [key, value] : files) {
+    r.get(sec, "dds.security", key, *value);
+    *value = relative_to(r.file(), *value);
+  }
+  r.get(sec, "dds.security", "plugin_dir", s.plugin_dir);
+  if (s.enabled()) {
+    for (const auto& [key, value] : files)
+      if (value->empty())
+        r.fail(std::string("dds.security.") + key, "required when security is on");
+  }
+  const YAML::Node rt = child(doc, "realtime");
+  r.only(rt, "realtime", {"fifo_priority", "lock_memory"});
+  r.get(rt, "realtime", "fifo_priority", c.realtime.fifo_priority, 0, 99);
+  r.get(rt, "realtime", "lock_memory", c.realtime.lock_memory);
+}
+
+}  // namespace colag::board

@@ -1,0 +1,176 @@
+// colag_sim: one simulated ColAG mission on the host (the real firmware tasks against the
+// simulated world, faster than real time), printing the paper's metrics, optionally writing
+// them as JSON and drawing the mission as a PNG.
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <fstream>
+#include <tuple>
+
+#include "colag/sim/mission/mission.hpp"
+#include "mission_png.hpp"
+
+using namespace colag;
+
+namespace {
+
+void print_table(const mission::MissionOutcome& o) {
+  std::printf("\n%-4s %-8s %-9s %10s %10s %10s %10s %11s %9s\n", "ugv", "reached", "collided",
+              "reach_s", "waiting_s", "init_s", "length_m", "clearance_m", "requests");
+  for (const auto& u : o.ugvs) {
+    char reach[32];
+    std::snprintf(reach, sizeof reach, u.reached ? "%.2f" : "-", u.reach_time_s);
+    std::printf("%-4d %-8s %-9s %10s %10.2f %10.2f %10.2f %11.2f %9llu\n", u.id,
+                u.reached ? "yes" : "NO", u.collided ? "YES" : "no", reach, u.waiting_time_s,
+                u.init_wait_s, u.traj_length_m, u.min_clearance_m,
+                static_cast<unsigned long long>(u.support_requests));
+  }
+  std::printf("\nsummary (averages per UGV, as in the paper)\n");
+  if (o.reach_time_s >= 0.0) {
+    std::printf("  UGV reach time      %8.2f s\n", o.reach_time_s);
+  } else {
+    std::printf("  UGV reach time           - (none reached)\n");
+  }
+  std::printf("  UGV waiting time    %8.2f s (max %.2f s)\n", o.waiting_time_s,
+              o.max_waiting_time_s);
+  std::printf("  UGV traj. length    %8.2f m\n", o.ugv_traj_length_m);
+  std::printf("  UAV traj. length    %8.2f m\n", o.uav_traj_length_m);
+  std::printf("  collisions          %8d\n", o.collisions);
+  std::printf("  all reached         %8s\n", o.all_reached ? "yes" : "NO");
+  if (o.map_patches > 0) {
+    std::printf("  map patches         %8llu (%.1f B payload each)\n",
+                static_cast<unsigned long long>(o.map_patches),
+                static_cast<double>(o.map_patch_bytes) / static_cast<double>(o.map_patches));
+  }
+  std::printf("  simulated %.1f s in %.2f s wall (%.0fx real time)\n", o.sim_time_s, o.wall_time_s,
+              o.sim_time_s / std::max(o.wall_time_s, 1e-9));
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"colag_sim: one simulated ColAG mission (UAV + blind UGVs) on the host"};
+  mission::MissionConfig cfg;
+  std::string map_file, ablation = "none", json_path, png_path;
+  bool quiet = false, verbose = false;
+  auto* scenario =
+      app.add_option("--scenario", cfg.scenario, "generated map: sparse (40 boxes) or dense (80)")
+          ->check(CLI::IsMember({"sparse", "dense"}));
+  app.add_option("--map", map_file, "a PCD map instead (ascii or binary; x y z)")
+      ->excludes(scenario)
+      ->check(CLI::ExistingFile);
+  app.add_option("--ugvs", cfg.ugvs, "number of UGVs")->check(CLI::Range(1, 16));
+  app.add_option("--seed", cfg.seed, "seed of the map, the noise and the network");
+  app.add_option("--ablation", ablation,
+                 "none, no-rpe, no-uncertainty, no-scheduling, no-time-windows")
+      ->check(
+          CLI::IsMember({"none", "no-rpe", "no-uncertainty", "no-scheduling", "no-time-windows"}));
+  app.add_flag("--self-perception", cfg.self_perception,
+               "baseline: every UGV has its own LiDAR and true pose, no UAV");
+  app.add_option("--max-time", cfg.max_time_s, "simulated seconds before giving up")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--lidar-columns", cfg.lidar_columns, "LiDAR columns per turn (1200 = 0.3 deg)")
+      ->check(CLI::Range(60, 1200));
+  app.add_option("--predict-horizon", cfg.predict_horizon_m,
+                 "UGV collision-prediction horizon, m (paper: 2)")
+      ->check(CLI::Range(0.1, 20.0));
+  app.add_option("--threads", cfg.threads,
+                 "cores the simulation may use (the results are the same for any number)")
+      ->check(CLI::Range(1, 8));
+  // Fault injection.
+  double loss_pct = 0.0, odom_bias_pct = 0.0;
+  std::string uav_blackout, rpe_blackout;
+  auto* faults = app.add_option_group("faults", "fault injection");
+  faults->add_option("--loss", loss_pct, "share of messages lost, % (every topic)")
+      ->check(CLI::Range(0.0, 100.0));
+  faults->add_option("--latency-ms", cfg.faults.latency_ms, "network latency, ms")
+      ->check(CLI::Range(0.0, 10000.0));
+  faults->add_option("--jitter-ms", cfg.faults.jitter_ms, "+ uniform jitter, ms (reorders)")
+      ->check(CLI::Range(0.0, 10000.0));
+  faults->add_option("--uav-blackout", uav_blackout, "T0:T1 s: the UAV is silent (all its topics)");
+  faults->add_option("--rpe-blackout", rpe_blackout, "T0:T1 s: no relative poses");
+  faults->add_option("--odom-bias", odom_bias_pct, "wheel-encoder scale error, %")
+      ->check(CLI::Range(-49.0, 49.0));
+  app.add_option("--json", json_path, "write the metrics as JSON to this file");
+  app.add_option("--png", png_path, "draw the mission into this PNG file");
+  app.add_flag("--quiet", quiet, "no progress bar, no table");
+  app.add_flag("--verbose", verbose,
+               "also list every stop of every UGV and the host time of each task");
+  CLI11_PARSE(app, argc, argv);
+  if (!map_file.empty()) {
+    cfg.scenario = "file";
+    cfg.map_file = map_file;
+  }
+  mission::parse_ablation(ablation, cfg.ablation);
+  cfg.faults.loss = loss_pct / 100.0;
+  cfg.faults.odom_bias = odom_bias_pct / 100.0;
+  for (const auto& [text, window, name] :
+       {std::tuple{uav_blackout, &cfg.faults.uav_blackout, "--uav-blackout"},
+        std::tuple{rpe_blackout, &cfg.faults.rpe_blackout, "--rpe-blackout"}}) {
+    if (!text.empty() && !mission::parse_window(text, *window)) {
+      std::fprintf(stderr, "colag_sim: %s: expected T0:T1 in seconds with 0 <= T0 < T1, got '%s'\n",
+                   name, text.c_str());
+      return 2;
+    }
+  }
+
+  const bool bar = !quiet && isatty(STDERR_FILENO);
+  if (bar) {
+    cfg.progress = [](double f) {
+      const int width = 40, done = static_cast<int>(std::min(f, 1.0) * width);
+      std::fprintf(stderr, "\r[%.*s%*s] %3.0f%% of max time", done,
+                   "========================================", width - done, "",
+                   100.0 * std::min(f, 1.0));
+    };
+  }
+  mission::MissionTrace trace;
+  std::string error;
+  const auto outcome =
+      mission::run_mission(cfg, png_path.empty() && !verbose ? nullptr : &trace, &error);
+  if (bar) std::fprintf(stderr, "\r%*s\r", 60, "");
+  if (!outcome) {
+    std::fprintf(stderr, "colag_sim: %s\n", error.c_str());
+    return 2;
+  }
+  const mission::MissionOutcome& o = outcome.value();
+  if (!quiet) {
+    std::printf("colag_sim: %s map, %d UGV%s, seed %llu, ablation %s%s\n",
+                cfg.scenario == "file" ? cfg.map_file.c_str() : cfg.scenario.c_str(), cfg.ugvs,
+                cfg.ugvs == 1 ? "" : "s", static_cast<unsigned long long>(cfg.seed),
+                mission::to_string(cfg.ablation),
+                cfg.self_perception ? ", self-perception baseline" : "");
+    print_table(o);
+  }
+  if (verbose) {
+    std::printf("\nstops (UGV, from - to, where, why)\n");
+    for (const auto& s : trace.stops) {
+      std::printf("  %2d  %7.1f - %7.1f s  (%6.2f, %6.2f)  %s\n", s.ugv, s.from_s, s.to_s,
+                  s.where.x(), s.where.y(),
+                  s.for_support ? "waiting for support" : "waiting for the first relative pose");
+    }
+    double total = 0.0;
+    for (const auto& t : o.task_times)
+      total += t.total_s;
+    std::printf("\nhost CPU per task (all robots; %d thread%s)\n", cfg.threads,
+                cfg.threads == 1 ? "" : "s");
+    std::printf("  %-16s %9s %9s %6s %12s\n", "task", "steps", "total s", "share", "longest ms");
+    for (const auto& t : o.task_times) {
+      std::printf("  %-16s %9llu %9.3f %5.1f%% %12.3f\n", t.name.c_str(),
+                  static_cast<unsigned long long>(t.steps), t.total_s,
+                  total > 0 ? 100.0 * t.total_s / total : 0.0, t.longest_ms);
+    }
+  }
+  if (!json_path.empty()) {
+    std::ofstream(json_path) << mission::to_json(o) << "\n";
+    if (!quiet) std::printf("  metrics: %s\n", json_path.c_str());
+  }
+  if (!png_path.empty()) {
+    if (!programs::draw_mission(trace, o, png_path, error)) {
+      std::fprintf(stderr, "colag_sim: %s\n", error.c_str());
+      return 2;
+    }
+    if (!quiet) std::printf("  picture: %s\n", png_path.c_str());
+  }
+  return 0;
+}

@@ -1,0 +1,320 @@
+// colag_world: the simulated world as its own process, for software in the loop (SITL). The
+// robots' firmware runs unchanged as separate processes — uav_fw (robot.hal: sim) and one ugv_fw
+// per UGV (can.interface: sim) — and reaches the world only over DDS: the sim link on domain
+// D + 1 (CAN frames, the UAV's state, setpoints, LiDAR scans, camera frames) while the robots
+// talk to each other on domain D. The world listens to the robots' own topics on D for the
+// metrics, runs in real time, and writes the same metrics JSON as colag_sim.
+//
+//   colag_world --scenario sparse --ugvs 3 --seed 1 [--domain D] [--max-time S] [--json F]
+//               [--time-scale X]   (X simulated seconds per second; the robots get the same)
+//
+// The mission clock starts when every robot has been heard (their status, the UAV's odometry).
+// Exit codes: 0 the mission ran (see the JSON for how it went), 1 DDS failed, 2 usage,
+// 3 a robot never appeared or went silent.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "colag/platform/dds/dds_transport.hpp"
+#include "colag/platform/realtime_executor.hpp"
+#include "colag/platform/worker_pool.hpp"
+#include "colag/sim/bridge/world_bridge.hpp"
+#include "colag/sim/mission/mission.hpp"
+#include "colag/sim/world/sim_world.hpp"
+
+using namespace colag;
+using namespace std::chrono_literals;
+
+namespace {
+
+class WorldStep final : public platform::Task {
+ public:
+  explicit WorldStep(sim::SimWorld& world) : world_(world) {}
+  const char* name() const override { return "world"; }
+  void step(TimePoint now) override {
+    // Real time: the step covers the time since the last one (more when activations were skipped).
+    const double dt = last_ == TimePoint{} ? 0.02 : std::clamp(to_seconds(now - last_), 0.0, 0.1);
+    last_ = now;
+    world_.step(now, dt);
+  }
+
+ private:
+  sim::SimWorld& world_;
+  TimePoint last_{};
+};
+
+class BridgeStep final : public platform::Task {
+ public:
+  explicit BridgeStep(sim::WorldBridge& bridge) : bridge_(bridge) {}
+  const char* name() const override { return "bridge"; }
+  void step(TimePoint) override { bridge_.step(); }
+
+ private:
+  sim::WorldBridge& bridge_;
+};
+
+// What the world hears of the robots on their own domain.
+struct RobotTraffic final : platform::SampleSink {
+  explicit RobotTraffic(int ugvs) : status(static_cast<std::size_t>(ugvs)), heard(status.size()) {}
+  void on_sample(msg::Topic topic, const void* sample, TimePoint now) override {
+    switch (topic) {
+      case msg::Topic::kUgvStatus: {
+        const auto& s = *static_cast<const msg::UgvStatus*>(sample);
+        if (s.ugv_id < status.size()) {
+          status[s.ugv_id] = s;
+          heard[s.ugv_id] = now;
+        }
+        break;
+      }
+      case msg::Topic::kMapPatch:
+        ++patches;
+        patch_bytes += static_cast<const msg::MapPatch*>(sample)->data_bytes;
+        break;
+      case msg::Topic::kCollisionInfo: {
+        const auto& ci = *static_cast<const msg::CollisionInfo*>(sample);
+        if (!ci.cancel && ci.ugv_id < status.size()) ++requests[ci.ugv_id];
+        break;
+      }
+      case msg::Topic::kUavOdometry:
+        uav_heard = now;
+        break;
+      default:
+        break;
+    }
+  }
+  std::vector<msg::UgvStatus> status;
+  std::vector<TimePoint> heard;  // TimePoint{} = never
+  std::array<std::uint64_t, limits::kMaxUgvs> requests{};
+  TimePoint uav_heard{};
+  std::uint64_t patches = 0, patch_bytes = 0;
+};
+
+// Watches the mission every 100 ms: when it starts, who has arrived, when it is over.
+class Monitor final : public platform::Task {
+ public:
+  Monitor(const mission::MissionConfig& cfg, sim::SimWorld& world, RobotTraffic& traffic,
+          platform::RealtimeExecutor& exec, double start_timeout_s, bool quiet)
+      : cfg_(cfg),
+        world_(world),
+        traffic_(traffic),
+        exec_(exec),
+        start_timeout_s_(start_timeout_s),
+        quiet_(quiet),
+        reach_s_(static_cast<std::size_t>(cfg.ugvs), -1.0),
+        reached_(reach_s_.size(), false) {}
+  const char* name() const override { return "monitor"; }
+  void step(TimePoint now) override {
+    if (created_ == TimePoint{}) created_ = now;
+    if (!started_) {
+      bool all = traffic_.uav_heard != TimePoint{};
+      for (const TimePoint h : traffic_.heard)
+        all = all && h != TimePoint{};
+      if (all) {
+        started_ = true;
+        t0_ = now;
+        say("colag_world: every robot is up; mission clock started");
+      } else if (to_seconds(now - created_) > start_timeout_s_) {
+        failure_ = "not every robot appeared within the start timeout:" + missing();
+        exec_.request_stop();
+      }
+      return;
+    }
+    const double t = to_seconds(now - t0_);
+    bool all_done = true;
+    int reached = 0;
+    for (int i = 0; i < cfg_.ugvs; ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      if (to_seconds(now - traffic_.heard[k]) > 5.0) {
+        failure_ = "UGV " + std::to_string(i) + "'s firmware went silent";
+        exec_.request_stop();
+        return;
+      }
+      const bool arrived = traffic_.status[k].mode == msg::UgvMode::kArrived;
+      if (arrived && reach_s_[k] < 0.0) {
+        reach_s_[k] = t;
+        reached_[k] =
+            (world_.ugv(i).pose().p - mission::ugv_goal(i)).norm() <= cfg_.goal_tolerance_m;
+      }
+      reached += reached_[k] ? 1 : 0;
+      all_done = all_done && (arrived || world_.ugv(i).frozen());
+    }
+    if (!quiet_ && t >= next_report_s_) {
+      next_report_s_ += 10.0;
+      std::printf("colag_world: t = %5.1f s  reached %d/%d  collisions %zu\n", t, reached,
+                  cfg_.ugvs, world_.collisions().size());
+      std::fflush(stdout);
+    }
+    elapsed_s_ = t;
+    if (all_done || t >= cfg_.max_time_s) exec_.request_stop();
+  }
+
+  std::string missing() const {
+    std::string m;
+    if (traffic_.uav_heard == TimePoint{}) m += " UAV";
+    for (std::size_t i = 0; i < traffic_.heard.size(); ++i)
+      if (traffic_.heard[i] == TimePoint{}) m += " UGV" + std::to_string(i);
+    return m;
+  }
+  void say(const char* s) const {
+    if (!quiet_) {
+      std::printf("%s\n", s);
+      std::fflush(stdout);
+    }
+  }
+
+  const mission::MissionConfig& cfg_;
+  sim::SimWorld& world_;
+  RobotTraffic& traffic_;
+  platform::RealtimeExecutor& exec_;
+  double start_timeout_s_;
+  bool quiet_;
+  bool started_ = false;
+  TimePoint created_{}, t0_{};
+  double elapsed_s_ = 0.0, next_report_s_ = 10.0;
+  std::vector<double> reach_s_;
+  std::vector<bool> reached_;
+  std::string failure_;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // Line-buffered even into a pipe or journald: a log must not lose its tail on SIGTERM.
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
+  CLI::App app{"colag_world: the simulated world for software-in-the-loop runs"};
+  mission::MissionConfig cfg;
+  std::string json_path;
+  std::uint32_t domain = 0;
+  double start_timeout_s = 60.0;
+  double time_scale = 1.0;
+  bool quiet = false;
+  app.add_option("--scenario", cfg.scenario, "sparse | dense")
+      ->check(CLI::IsMember({"sparse", "dense"}));
+  app.add_option("--map", cfg.map_file, "a PCD map instead of a generated scenario");
+  app.add_option("--ugvs", cfg.ugvs, "number of UGVs")
+      ->check(CLI::Range(1, static_cast<int>(limits::kMaxUgvs)));
+  app.add_option("--seed", cfg.seed, "map seed");
+  app.add_option("--domain", domain, "the robots' DDS domain (the sim link uses domain + 1)")
+      ->check(CLI::Range(0, 231));
+  app.add_option("--max-time", cfg.max_time_s, "mission time limit, s")->check(CLI::PositiveNumber);
+  app.add_option("--start-timeout", start_timeout_s, "how long to wait for the robots, s")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--lidar-columns", cfg.lidar_columns, "LiDAR horizontal resolution")
+      ->check(CLI::Range(60, static_cast<int>(limits::kMaxLidarColumns)));
+  app.add_option("--json", json_path, "write the metrics (colag_sim's schema) here");
+  app.add_option("--time-scale", time_scale,
+                 "simulated seconds per second (the robots need the same --time-scale)")
+      ->check(CLI::Range(0.1, 20.0));
+  app.add_flag("--quiet", quiet, "only errors");
+  CLI11_PARSE(app, argc, argv);
+  if (!cfg.map_file.empty()) cfg.scenario = "file";
+
+  sim::BoxWorld boxes;
+  std::string error;
+  if (!mission::build_world(cfg, boxes, error)) {
+    std::fprintf(stderr, "colag_world: %s\n", error.c_str());
+    return 2;
+  }
+  platform::RealtimeExecutor exec(time_scale);
+  sim::SimWorldConfig wc;
+  wc.seed = cfg.seed;
+  wc.lidar.columns = cfg.lidar_columns;
+  platform::WorkerPool pool(1);
+  sim::SimWorld world(wc, boxes, exec.clock(), &pool);
+  for (int i = 0; i < cfg.ugvs; ++i)
+    world.add_ugv(mission::ugv_start(i));
+  world.add_uav(mission::uav_start());
+
+  hal::sim::SimLink link;
+  const std::uint32_t sim_domain = hal::sim::sim_domain_for(domain);
+  if (const Status s = link.init(sim_domain, hal::sim::SimLink::Side::kWorld); !s) {
+    std::fprintf(stderr, "colag_world: sim link on DDS domain %u: %s (%s)\n", sim_domain,
+                 s.message(), dds_strretcode(link.last_error()));
+    return 1;
+  }
+  sim::WorldBridge bridge(link, world, true);
+  platform::dds::DdsTransport dds;
+  platform::dds::DdsConfig dds_cfg;
+  dds_cfg.domain_id = domain;
+  dds_cfg.publishes = {};  // a listener only
+  RobotTraffic traffic(cfg.ugvs);
+  Status st = dds.init(dds_cfg);
+  for (msg::Topic t : {msg::Topic::kUgvStatus, msg::Topic::kMapPatch, msg::Topic::kCollisionInfo,
+                       msg::Topic::kUavOdometry})
+    if (st) st = dds.subscribe(t, kAnyRobot, traffic);
+  if (!st) {
+    std::fprintf(stderr, "colag_world: DDS domain %u: %s (%s)\n", domain, st.message(),
+                 dds_strretcode(dds.last_error()));
+    return 1;
+  }
+
+  WorldStep world_step(world);
+  BridgeStep bridge_step(bridge);
+  platform::TransportPump pump(dds);
+  Monitor monitor(cfg, world, traffic, exec, start_timeout_s, quiet);
+  st = exec.add({&bridge_step, 10ms, 5ms});
+  if (st) st = exec.add({&world_step, 20ms, 15ms});
+  if (st) st = exec.add({&pump, 10ms, 5ms});
+  if (st) st = exec.add({&monitor, 100ms, 5ms});
+  if (st) st = exec.init();
+  if (!st) {
+    std::fprintf(stderr, "colag_world: start-up: %s\n", st.message());
+    return 1;
+  }
+  if (!quiet)
+    std::printf("colag_world: %s, %d UGVs, seed %llu; robots on DDS domain %u, sim link on %u\n",
+                cfg.scenario.c_str(), cfg.ugvs, static_cast<unsigned long long>(cfg.seed), domain,
+                sim_domain);
+  std::fflush(stdout);
+  const auto wall_start = std::chrono::steady_clock::now();
+  exec.run_until(TimePoint::max());
+
+  if (!monitor.failure_.empty()) {
+    std::fprintf(stderr, "colag_world: %s\n", monitor.failure_.c_str());
+    return 3;
+  }
+  // The outcome, as colag_sim reports it.
+  mission::MissionOutcome out;
+  out.config = cfg;
+  out.sim_time_s = monitor.elapsed_s_;
+  out.wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  int reached = 0;
+  for (int i = 0; i < cfg.ugvs; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    mission::UgvOutcome o;
+    o.id = i;
+    o.reached = monitor.reached_[k];
+    o.reach_time_s = o.reached ? monitor.reach_s_[k] : -1.0;
+    o.waiting_time_s = traffic.status[k].waiting_time_s;
+    o.support_requests = traffic.requests[k];
+    reached += o.reached ? 1 : 0;
+    out.ugvs.push_back(o);
+  }
+  mission::summarise(world, out);
+  out.uav_traj_length_m = world.uav().travelled_m();
+  out.map_patches = traffic.patches;
+  out.map_patch_bytes = traffic.patch_bytes;
+  const std::string json = mission::to_json(out);
+  if (!json_path.empty()) {
+    std::ofstream(json_path) << json << "\n";
+  }
+  const auto& b = bridge.counters();
+  if (!quiet) {
+    std::printf(
+        "colag_world: mission over after %.1f s: reached %d/%d, collisions %d, mean reach time "
+        "%.1f s, mean waiting %.1f s\n",
+        out.sim_time_s, reached, cfg.ugvs, out.collisions, out.reach_time_s, out.waiting_time_s);
+    std::printf(
+        "colag_world: sim link: %llu CAN frames to robots, %llu from them, %llu setpoints, %llu "
+        "scans (%.1f MB), %llu camera frames\n",
+        static_cast<unsigned long long>(b.frames_to_robots),
+        static_cast<unsigned long long>(b.frames_from_robots),
+        static_cast<unsigned long long>(b.setpoints), static_cast<unsigned long long>(b.scans),
+        static_cast<double>(b.scan_bytes) / 1e6, static_cast<unsigned long long>(b.rpe_frames));
+    if (!json_path.empty()) std::printf("colag_world: metrics in %s\n", json_path.c_str());
+  }
+  return 0;
+}

@@ -1,0 +1,100 @@
+#pragma once
+// The simulated world for host runs: the obstacles, the UGV bodies (each behind its own CAN
+// link, speaking the real protocol), the UAV body, and the UAV's sensors as HAL devices — a
+// VLP-32-like LiDAR and a camera that measures the relative pose of every UGV within range
+// and line of sight. Optionally every UGV has its own LiDAR (the self-perception baseline).
+// Ground truth is watched at every step: the UGV footprints against the obstacles and each
+// other; a collision is recorded (never hidden) and the UGV stops where it hit.
+// Host-side only. Built once before a run; step() allocates nothing.
+#include <memory>
+#include <vector>
+
+#include "colag/common/limits.hpp"
+#include "colag/common/random.hpp"
+#include "colag/common/static_vector.hpp"
+#include "colag/hal/lidar.hpp"
+#include "colag/hal/relative_pose_sensor.hpp"
+#include "colag/hal/sim/can_link.hpp"
+#include "colag/sim/world/box_world.hpp"
+#include "colag/sim/world/lidar_simulator.hpp"
+#include "colag/sim/world/uav_body.hpp"
+#include "colag/sim/world/ugv_body.hpp"
+
+namespace colag::sim {
+
+struct CameraConfig {
+  double range_m = 5.0;
+  double sigma_position_m = 0.2;
+  double sigma_yaw_rad = 0.05;
+  double fov_half_angle_rad = M_PI;  // from straight down; pi = unlimited (the paper's device)
+  double tag_height_m = 0.3;         // what the camera looks at, above the UGV's origin
+  Duration period = std::chrono::milliseconds(50);
+};
+
+struct SimWorldConfig {
+  UgvBodyConfig ugv;
+  UavBodyConfig uav;
+  LidarPattern lidar;
+  Duration lidar_period = std::chrono::milliseconds(100);
+  CameraConfig camera;
+  double ugv_lidar_height_m = 0.4;  // self-perception baseline
+  std::uint64_t seed = 1;
+};
+
+struct CollisionEvent {
+  TimePoint at;
+  int ugv = -1;
+  int other_ugv = -1;  // -1: an obstacle
+  Vec2 where = Vec2::Zero();
+};
+
+class SimWorld {
+ public:
+  // `fork_join` (optional, not owned): the LiDAR simulation may use more cores.
+  SimWorld(const SimWorldConfig& config, BoxWorld world, const hal::Clock& clock,
+           ForkJoin* fork_join = nullptr);
+  ~SimWorld();
+
+  int add_ugv(const Pose2& start);
+  void add_uav(const Vec3& start);
+  void enable_ugv_lidars();  // self-perception baseline
+
+  // Advances every body by dt and produces the sensor data due at `now`.
+  void step(TimePoint now, double dt);
+
+  // HAL devices for the firmware under test.
+  hal::CanBus& ugv_can(int i);
+  hal::Lidar& ugv_lidar(int i);
+  UavBody& uav();
+  hal::Lidar& uav_lidar();
+  hal::RelativePoseSensor& uav_camera();
+
+  // Ground truth.
+  const BoxWorld& world() const { return world_; }
+  int ugv_count() const { return static_cast<int>(ugvs_.size()); }
+  const UgvBody& ugv(int i) const;
+  double min_clearance_m(int i) const;
+  const std::vector<CollisionEvent>& collisions() const { return collisions_; }
+  bool line_of_sight(const Vec3& a, const Vec3& b) const;
+
+ private:
+  struct Ugv;
+  class ScanDevice;
+  class Camera;
+  void detect(TimePoint now);
+  void watch_collisions(TimePoint now);
+
+  SimWorldConfig config_;
+  BoxWorld world_;
+  const hal::Clock& clock_;
+  ForkJoin* fork_join_;
+  Rng rng_;
+  std::vector<std::unique_ptr<Ugv>> ugvs_;
+  std::unique_ptr<UavBody> uav_;
+  std::unique_ptr<ScanDevice> uav_lidar_;
+  std::unique_ptr<Camera> camera_;
+  TimePoint next_scan_{}, next_frame_{};
+  std::vector<CollisionEvent> collisions_;
+};
+
+}  // namespace colag::sim

@@ -1,0 +1,43 @@
+#pragma once
+// The simulated UAV: a point mass that follows the flight controller's velocity setpoints within
+// its speed and acceleration limits, exact odometry (as in the paper), and the HAL devices on
+// top of it: OdometrySource and FlightController. The setpoint's position is not fed back here:
+// the flight planner closes the position loop itself (a position term on a setpoint that is one
+// step old pushes the vehicle forward and fights the planner's braking).
+#include "colag/common/ring_buffer.hpp"
+#include "colag/hal/flight_controller.hpp"
+#include "colag/hal/odometry_source.hpp"
+
+namespace colag::sim {
+
+struct UavBodyConfig {
+  double v_max_mps = 3.0;
+  double a_max_mps2 = 1.0;
+};
+
+class UavBody final : public hal::FlightController, public hal::OdometrySource {
+ public:
+  UavBody(const UavBodyConfig& config, const Vec3& start) : config_(config) {
+    state_.pose.p = start;
+  }
+
+  void step(TimePoint now, double dt);  // moves, then publishes the new state as odometry
+
+  // hal::FlightController
+  Status send_setpoint(const hal::FlightSetpoint& sp) override;
+  // hal::OdometrySource
+  bool poll(hal::UavState& out) override { return pending_.pop_front(out); }
+
+  const hal::UavState& state() const { return state_; }
+  double travelled_m() const { return travelled_; }
+
+ private:
+  UavBodyConfig config_;
+  hal::UavState state_;
+  hal::FlightSetpoint setpoint_;
+  bool have_setpoint_ = false;
+  double travelled_ = 0.0;
+  RingBuffer<hal::UavState, 8> pending_;
+};
+
+}  // namespace colag::sim

@@ -1,0 +1,55 @@
+#pragma once
+// A simulated differential-drive UGV and its motor controller. The controller speaks the real
+// CAN protocol (hal/can): it takes SPEED_COMMAND frames (zero after 200 ms without one),
+// drives the wheels towards them within the acceleration limit, and reports ENCODER_COUNTS
+// and WHEEL_SPEEDS at 50 Hz. The true motion gets 1 % multiplicative noise on v and omega (the
+// paper's simulation); the encoders measure it with white noise sigma_v, sigma_omega per
+// sample (the paper's odometry noise), applied only while the wheels turn.
+#include "colag/common/random.hpp"
+#include "colag/common/ugv_motion_model.hpp"
+#include "colag/hal/can/can_wheel_odometry.hpp"
+#include "colag/hal/can/wheel_protocol.hpp"
+
+namespace colag::sim {
+
+struct UgvBodyConfig {
+  double radius_m = 0.25;
+  hal::can::WheelProtocolConfig protocol;
+  hal::can::WheelGeometry geometry;
+  double wheel_accel_mps2 = 1.0;
+  double motion_noise_fraction = 0.01;
+  OdometryNoise odometry_noise;  // sigma_v, sigma_omega used; fractions ignored
+  Duration command_timeout = std::chrono::milliseconds(200);
+  double encoder_bias = 0.0;  // fault injection: encoders report (1 + bias) x the wheels' motion
+};
+
+class UgvBody {
+ public:
+  UgvBody(const UgvBodyConfig& config, const Pose2& start, std::uint64_t seed)
+      : config_(config), pose_(start), rng_(seed) {}
+
+  // Advances dt: reads commands from `bus` (the controller's side), moves, sends encoder
+  // frames. A frozen body (after a collision) no longer moves.
+  void step(TimePoint now, double dt, hal::CanBus& bus);
+  void freeze() { frozen_ = true; }
+
+  const Pose2& pose() const { return pose_; }
+  double travelled_m() const { return travelled_; }
+  double speed_mps() const { return 0.5 * (left_ + right_); }
+  bool frozen() const { return frozen_; }
+  const UgvBodyConfig& config() const { return config_; }
+
+ private:
+  UgvBodyConfig config_;
+  Pose2 pose_;
+  Rng rng_;
+  double left_ = 0.0, right_ = 0.0;  // true wheel speeds
+  double target_left_ = 0.0, target_right_ = 0.0;
+  TimePoint last_command_ = kNever;
+  double ticks_left_ = 0.0, ticks_right_ = 0.0;  // measured, fractional
+  std::uint8_t alive_counts_ = 0, alive_speeds_ = 0;
+  double travelled_ = 0.0;
+  bool frozen_ = false;
+};
+
+}  // namespace colag::sim

@@ -1,0 +1,55 @@
+#include "colag/sim/world/box_world.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "colag/common/random.hpp"
+
+namespace colag::sim {
+
+double BoxWorld::clearance(const Vec2& p) const {
+  double best = std::numeric_limits<double>::max();
+  for (const Box& b : boxes)
+    best = std::min(best, b.distance(p));
+  return best;
+}
+
+bool BoxWorld::occupied(const Vec3& p) const {
+  for (const Box& b : boxes) {
+    if (b.contains(p)) return true;
+  }
+  return false;
+}
+
+Result<BoxWorld> generate_box_world(const MapGenConfig& config) {
+  BoxWorld world;
+  world.min_x_m = world.min_y_m = -config.arena_half_m;
+  world.max_x_m = world.max_y_m = config.arena_half_m;
+  Rng rng(config.seed);
+  const auto grid_steps =
+      static_cast<std::uint64_t>(std::llround(2.0 * config.arena_half_m / 0.1)) + 1;
+  const std::size_t max_attempts = 10000 * (config.boxes + 1);
+  for (std::size_t attempt = 0; attempt < max_attempts && world.boxes.size() < config.boxes;
+       ++attempt) {
+    // Centres on the 0.1 m grid, as in the paper's maps.
+    const Vec2 c(-config.arena_half_m + 0.1 * static_cast<double>(rng.below(grid_steps)),
+                 -config.arena_half_m + 0.1 * static_cast<double>(rng.below(grid_steps)));
+    bool ok = true;
+    for (const Box& b : world.boxes) {
+      if ((b.center - c).norm() < config.min_center_distance_m) {
+        ok = false;
+        break;
+      }
+    }
+    if (!ok) continue;
+    const double side =
+        rng.uniform() < config.small_fraction ? config.small_side_m : config.large_side_m;
+    world.boxes.push_back({c, Vec2::Constant(side / 2), config.height_m});
+  }
+  if (world.boxes.size() < config.boxes) {
+    return Status{Errc::kCapacityExceeded, "arena too small for that many boxes at that spacing"};
+  }
+  return world;
+}
+
+}  // namespace colag::sim

@@ -1,0 +1,244 @@
+#include "colag/sim/world/pcd_loader.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+namespace colag::sim {
+
+namespace {
+constexpr double kMaxCoordinate_m = 1e6;
+}  // namespace
+
+bool load_pcd(const std::string& path, std::vector<Vec3>& points, std::string& error) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    error = "cannot open " + path;
+    return false;
+  }
+  std::ostringstream all;
+  all << in.rdbuf();
+  if (!parse_pcd(all.str(), points, error)) {
+    error = path + ": " + error;
+    return false;
+  }
+  return true;
+}
+
+bool parse_pcd(const std::string& bytes, std::vector<Vec3>& points, std::string& error) {
+  std::vector<std::string> fields, types;
+  std::vector<int> sizes, counts;
+  long long declared = -1, width = -1, height = 1;
+  std::string data;
+  std::size_t pos = 0;
+  int line_no = 0;
+  while (data.empty()) {
+    const std::size_t end = bytes.find('\n', pos);
+    if (end == std::string::npos) {
+      error = "header ends without a DATA line";
+      return false;
+    }
+    std::string line = bytes.substr(pos, end - pos);
+    pos = end + 1;
+    ++line_no;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream ls(line);
+    std::string key;
+    ls >> key;
+    const auto read_list = [&](auto& list) {
+      typename std::decay_t<decltype(list)>::value_type v;
+      while (ls >> v)
+        list.push_back(v);
+    };
+    if (key == "VERSION" || key == "VIEWPOINT") continue;
+    if (key == "FIELDS") {
+      read_list(fields);
+    } else if (key == "SIZE") {
+      read_list(sizes);
+    } else if (key == "TYPE") {
+      read_list(types);
+    } else if (key == "COUNT") {
+      read_list(counts);
+    } else if (key == "WIDTH") {
+      ls >> width;
+    } else if (key == "HEIGHT") {
+      ls >> height;
+    } else if (key == "POINTS") {
+      ls >> declared;
+    } else if (key == "DATA") {
+      ls >> data;
+    } else {
+      error = "line " + std::to_string(line_no) + ": unknown header key '" + key + "'";
+      return false;
+    }
+  }
+  if (counts.empty()) counts.assign(fields.size(), 1);
+  if (fields.empty() || sizes.size() != fields.size() || types.size() != fields.size() ||
+      counts.size() != fields.size()) {
+    error = "FIELDS, SIZE, TYPE and COUNT must list the same number of entries";
+    return false;
+  }
+  constexpr long long kMaxPoints = 100'000'000;
+  if (declared < 0 && width >= 0 && width <= kMaxPoints && height >= 0 && height <= kMaxPoints)
+    declared = width * height;
+  if (declared < 0 || declared > kMaxPoints) {
+    error = "missing or absurd POINTS/WIDTH";
+    return false;
+  }
+  for (std::size_t f = 0; f < fields.size(); ++f) {
+    if (sizes[f] != 1 && sizes[f] != 2 && sizes[f] != 4 && sizes[f] != 8) {
+      error = "field " + fields[f] + ": SIZE must be 1, 2, 4 or 8";
+      return false;
+    }
+    if (counts[f] < 1 || counts[f] > 4096) {
+      error = "field " + fields[f] + ": COUNT must be 1..4096";
+      return false;
+    }
+  }
+  // Where x, y, z are in a point record.
+  int index[3] = {-1, -1, -1};
+  std::size_t offset[3] = {0, 0, 0}, record = 0, column = 0;
+  int column_of[3] = {0, 0, 0};
+  for (std::size_t f = 0; f < fields.size(); ++f) {
+    for (int a = 0; a < 3; ++a) {
+      if (fields[f] == std::string(1, static_cast<char>('x' + a))) {
+        if (types[f] != "F" || (sizes[f] != 4 && sizes[f] != 8)) {
+          error = "field " + fields[f] + " must be TYPE F with SIZE 4 or 8";
+          return false;
+        }
+        index[a] = static_cast<int>(f);
+        offset[a] = record;
+        column_of[a] = static_cast<int>(column);
+      }
+    }
+    record += static_cast<std::size_t>(sizes[f]) * static_cast<std::size_t>(counts[f]);
+    column += static_cast<std::size_t>(counts[f]);
+  }
+  if (index[0] < 0 || index[1] < 0 || index[2] < 0) {
+    error = "the cloud needs x, y and z fields";
+    return false;
+  }
+  points.clear();
+  // Never trust the header with memory: a point takes at least 6 bytes of text ("0 0 0\n") or
+  // one record of binary data.
+  const std::size_t body_bytes = bytes.size() - pos;
+  points.reserve(std::min(static_cast<std::size_t>(declared), body_bytes / 6));
+  if (data == "ascii") {
+    std::istringstream body(bytes.substr(pos));
+    std::string line;
+    while (static_cast<long long>(points.size()) < declared && std::getline(body, line)) {
+      if (line.empty() || line == "\r") continue;
+      std::istringstream ls(line);
+      std::vector<double> values;
+      double v;
+      while (ls >> v)
+        values.push_back(v);
+      if (!ls.eof() || values.size() != column) {
+        error = "point " + std::to_string(points.size() + 1) + ": expected " +
+                std::to_string(column) + " numbers";
+        return false;
+      }
+      points.emplace_back(values[static_cast<std::size_t>(column_of[0])],
+                          values[static_cast<std::size_t>(column_of[1])],
+                          values[static_cast<std::size_t>(column_of[2])]);
+    }
+  } else if (data == "binary") {
+    if (body_bytes / record < static_cast<std::size_t>(declared)) {
+      error = "binary data truncated: " + std::to_string(declared) + " points of " +
+              std::to_string(record) + " bytes declared";
+      return false;
+    }
+    for (long long i = 0; i < declared; ++i) {
+      const char* p = bytes.data() + pos + static_cast<std::size_t>(i) * record;
+      Vec3 q;
+      for (int a = 0; a < 3; ++a) {
+        if (sizes[static_cast<std::size_t>(index[a])] == 4) {
+          float f;
+          std::memcpy(&f, p + offset[a], 4);
+          q[a] = f;
+        } else {
+          std::memcpy(&q[a], p + offset[a], 8);
+        }
+      }
+      points.push_back(q);
+    }
+  } else {
+    error = "DATA " + data + " is not supported (use ascii or binary)";
+    return false;
+  }
+  if (static_cast<long long>(points.size()) != declared) {
+    error = "the file has " + std::to_string(points.size()) + " points, the header says " +
+            std::to_string(declared);
+    return false;
+  }
+  for (const Vec3& q : points) {
+    if (!all_finite(q)) {
+      error = "a point is not finite";
+      return false;
+    }
+    if (q.cwiseAbs().maxCoeff() > kMaxCoordinate_m) {
+      error = "a point is more than 1000 km from the origin (units not metres?)";
+      return false;
+    }
+  }
+  return true;
+}
+
+BoxWorld box_world_from_points(const std::vector<Vec3>& points, double ground_z, double res) {
+  BoxWorld world;
+  std::map<std::pair<long, long>, double> top;  // column -> highest point
+  double min_x = 1e18, max_x = -1e18, min_y = 1e18, max_y = -1e18;
+  for (const Vec3& p : points) {
+    // Far or non-finite points would overflow the column indices: parse_pcd refuses them.
+    if (!all_finite(p) || p.cwiseAbs().maxCoeff() > kMaxCoordinate_m) continue;
+    min_x = std::min(min_x, p.x());
+    max_x = std::max(max_x, p.x());
+    min_y = std::min(min_y, p.y());
+    max_y = std::max(max_y, p.y());
+    if (p.z() <= ground_z) continue;
+    const std::pair<long, long> c{std::lround(std::floor(p.x() / res)),
+                                  std::lround(std::floor(p.y() / res))};
+    auto [it, inserted] = top.try_emplace(c, p.z());
+    if (!inserted) it->second = std::max(it->second, p.z());
+  }
+  if (min_x <= max_x) {
+    world.min_x_m = min_x;
+    world.max_x_m = max_x;
+    world.min_y_m = min_y;
+    world.max_y_m = max_y;
+  }
+  std::set<std::pair<long, long>> seen;
+  for (const auto& [cell, z] : top) {
+    if (seen.count(cell)) continue;
+    long x0 = cell.first, x1 = cell.first, y0 = cell.second, y1 = cell.second;
+    double height = 0.0;
+    std::vector<std::pair<long, long>> stack{cell};
+    seen.insert(cell);
+    while (!stack.empty()) {
+      const auto c = stack.back();
+      stack.pop_back();
+      x0 = std::min(x0, c.first);
+      x1 = std::max(x1, c.first);
+      y0 = std::min(y0, c.second);
+      y1 = std::max(y1, c.second);
+      height = std::max(height, top.at(c));
+      for (long dy = -1; dy <= 1; ++dy) {
+        for (long dx = -1; dx <= 1; ++dx) {
+          const std::pair<long, long> n{c.first + dx, c.second + dy};
+          if (top.count(n) && seen.insert(n).second) stack.push_back(n);
+        }
+      }
+    }
+    const auto at = [&](long k) { return static_cast<double>(k) * res; };
+    const Vec2 lo(at(x0), at(y0)), hi(at(x1 + 1), at(y1 + 1));
+    world.boxes.push_back({0.5 * (lo + hi), 0.5 * (hi - lo), height});
+  }
+  return world;
+}
+
+}  // namespace colag::sim

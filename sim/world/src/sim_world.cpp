@@ -1,0 +1,193 @@
+#include "colag/sim/world/sim_world.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace colag::sim {
+
+// A LiDAR device: the latest scan of a LidarSimulator, handed out once.
+class SimWorld::ScanDevice final : public hal::Lidar {
+ public:
+  ScanDevice(const LidarPattern& pattern, ForkJoin* fork_join) : sim_(pattern, fork_join) {}
+  void scan(const BoxWorld& world, const Pose3& pose, TimePoint now) {
+    sim_.scan(world, pose, points_, misses_);
+    stamp_ = now;
+    fresh_ = true;
+  }
+  bool poll(hal::LidarScanView& out) override {
+    if (!fresh_) return false;
+    fresh_ = false;
+    out = {stamp_, static_cast<float>(sim_.pattern().max_range_m), points_, misses_};
+    return true;
+  }
+
+ private:
+  LidarSimulator sim_;
+  std::span<const hal::LidarPoint> points_, misses_;
+  TimePoint stamp_{};
+  bool fresh_ = false;
+};
+
+// The UAV's relative-pose camera: the newest frame of detections, handed out once.
+class SimWorld::Camera final : public hal::RelativePoseSensor {
+ public:
+  std::size_t poll(std::span<hal::RelativePoseDetection> out) override {
+    if (!fresh_) return 0;
+    fresh_ = false;
+    const std::size_t n = std::min(out.size(), frame.size());
+    std::copy_n(frame.begin(), n, out.begin());
+    return n;
+  }
+  StaticVector<hal::RelativePoseDetection, limits::kMaxRpeDetectionsPerFrame> frame;
+  bool fresh_ = false;
+};
+
+struct SimWorld::Ugv {
+  Ugv(const UgvBodyConfig& c, const Pose2& start, std::uint64_t seed, const hal::Clock& clock)
+      : body(c, start, seed), link(clock) {}
+  UgvBody body;
+  hal::sim::SimCanLink link;
+  std::unique_ptr<ScanDevice> lidar;
+  double min_clearance = std::numeric_limits<double>::infinity();
+  bool collided = false;
+};
+
+SimWorld::SimWorld(const SimWorldConfig& config, BoxWorld world, const hal::Clock& clock,
+                   ForkJoin* fork_join)
+    : config_(config),
+      world_(std::move(world)),
+      clock_(clock),
+      fork_join_(fork_join),
+      rng_(config.seed) {
+  camera_ = std::make_unique<Camera>();
+  collisions_.reserve(64);
+}
+
+SimWorld::~SimWorld() = default;
+
+int SimWorld::add_ugv(const Pose2& start) {
+  const auto seed = config_.seed * 1000003ULL + ugvs_.size() + 1;
+  ugvs_.push_back(std::make_unique<Ugv>(config_.ugv, start, seed, clock_));
+  return static_cast<int>(ugvs_.size()) - 1;
+}
+
+void SimWorld::add_uav(const Vec3& start) {
+  uav_ = std::make_unique<UavBody>(config_.uav, start);
+  uav_lidar_ = std::make_unique<ScanDevice>(config_.lidar, fork_join_);
+}
+
+void SimWorld::enable_ugv_lidars() {
+  for (auto& u : ugvs_)
+    u->lidar = std::make_unique<ScanDevice>(config_.lidar, fork_join_);
+}
+
+hal::CanBus& SimWorld::ugv_can(int i) {
+  return ugvs_.at(static_cast<std::size_t>(i))->link.board();
+}
+hal::Lidar& SimWorld::ugv_lidar(int i) {
+  return *ugvs_.at(static_cast<std::size_t>(i))->lidar;
+}
+UavBody& SimWorld::uav() {
+  return *uav_;
+}
+hal::Lidar& SimWorld::uav_lidar() {
+  return *uav_lidar_;
+}
+hal::RelativePoseSensor& SimWorld::uav_camera() {
+  return *camera_;
+}
+const UgvBody& SimWorld::ugv(int i) const {
+  return ugvs_.at(static_cast<std::size_t>(i))->body;
+}
+double SimWorld::min_clearance_m(int i) const {
+  return ugvs_.at(static_cast<std::size_t>(i))->min_clearance;
+}
+
+bool SimWorld::line_of_sight(const Vec3& a, const Vec3& b) const {
+  const Vec3 d = b - a;
+  const double len = d.norm();
+  if (len < 1e-9) return true;
+  for (const Box& box : world_.boxes) {
+    const double t = ray_box(a, d / len, box);
+    if (t >= 0.0 && t < len) return false;
+  }
+  return true;
+}
+
+void SimWorld::detect(TimePoint now) {
+  camera_->frame.clear();
+  const Pose3& cam = uav_->state().pose;
+  const CameraConfig& c = config_.camera;
+  for (std::size_t i = 0; i < ugvs_.size(); ++i) {
+    const Pose2& g = ugvs_[i]->body.pose();
+    const Vec3 tag(g.p.x(), g.p.y(), c.tag_height_m);
+    const Vec3 to_tag = tag - cam.p;
+    if (to_tag.norm() > c.range_m) continue;
+    if (std::acos(std::clamp(-to_tag.normalized().z(), -1.0, 1.0)) > c.fov_half_angle_rad) continue;
+    if (!line_of_sight(cam.p, tag)) continue;
+    const Pose3 truth =
+        cam.inverse().compose({Vec3(g.p.x(), g.p.y(), 0.0), quat_from_yaw(g.yaw_rad)});
+    hal::RelativePoseDetection d;
+    d.stamp = now;
+    d.ugv_id = static_cast<RobotId>(i);
+    d.ugv_in_uav.p =
+        truth.p + Vec3(rng_.gaussian(0, c.sigma_position_m), rng_.gaussian(0, c.sigma_position_m),
+                       rng_.gaussian(0, c.sigma_position_m));
+    d.ugv_in_uav.q = (truth.q * quat_from_yaw(rng_.gaussian(0, c.sigma_yaw_rad))).normalized();
+    const double sp = c.sigma_position_m * c.sigma_position_m;
+    d.covariance = Eigen::Vector4d(sp, sp, sp, c.sigma_yaw_rad * c.sigma_yaw_rad).asDiagonal();
+    (void)camera_->frame.push_back(d);
+  }
+  camera_->fresh_ = true;
+}
+
+void SimWorld::watch_collisions(TimePoint now) {
+  const double r = config_.ugv.radius_m;
+  for (std::size_t i = 0; i < ugvs_.size(); ++i) {
+    Ugv& u = *ugvs_[i];
+    const Vec2 p = u.body.pose().p;
+    const double clear = world_.clearance(p) - r;
+    u.min_clearance = std::min(u.min_clearance, clear);
+    if (clear < 0.0 && !u.collided) {
+      u.collided = true;
+      u.body.freeze();
+      collisions_.push_back({now, static_cast<int>(i), -1, p});
+    }
+    for (std::size_t j = i + 1; j < ugvs_.size(); ++j) {
+      Ugv& o = *ugvs_[j];
+      const double gap = (o.body.pose().p - p).norm() - 2.0 * r;
+      u.min_clearance = std::min(u.min_clearance, gap);
+      o.min_clearance = std::min(o.min_clearance, gap);
+      if (gap < 0.0 && !(u.collided && o.collided)) {
+        if (!u.collided) u.body.freeze();
+        if (!o.collided) o.body.freeze();
+        u.collided = o.collided = true;
+        collisions_.push_back({now, static_cast<int>(i), static_cast<int>(j), p});
+      }
+    }
+  }
+}
+
+void SimWorld::step(TimePoint now, double dt) {
+  for (auto& u : ugvs_)
+    u->body.step(now, dt, u->link.motor());
+  if (uav_) uav_->step(now, dt);
+  watch_collisions(now);
+  if (now >= next_scan_) {
+    next_scan_ = now + config_.lidar_period;
+    if (uav_) uav_lidar_->scan(world_, uav_->state().pose, now);
+    for (auto& u : ugvs_) {
+      if (!u->lidar) continue;
+      const Pose2& g = u->body.pose();
+      u->lidar->scan(world_,
+                     {Vec3(g.p.x(), g.p.y(), config_.ugv_lidar_height_m), quat_from_yaw(g.yaw_rad)},
+                     now);
+    }
+  }
+  if (uav_ && now >= next_frame_) {
+    next_frame_ = now + config_.camera.period;
+    detect(now);
+  }
+}
+
+}  // namespace colag::sim

@@ -1,0 +1,27 @@
+#pragma once
+// uav_fw's configuration (see colag/board/config.hpp for the rules, config/uav.example.yaml for
+// keys).
+#include <string>
+
+#include "colag/board/config.hpp"
+#include "colag/hal/linux/camera_rpe.hpp"
+
+namespace colag::uav {
+
+struct UavBoardConfig {
+  board::CommonBoardConfig common;
+  RobotId id = 0;
+  // robot.hal: "board" (the UAV's own drivers) or "sim" (colag_world over the sim link: SITL).
+  bool sim_hal = false;
+  linux_hal::TagPoseConfig rpe;
+  linux_hal::CameraSource camera;
+  std::string calibration_file;  // OpenCV calibration YAML, required
+};
+
+// False with `error` = "FILE: key.path: problem".
+bool load_uav_config(const std::string& path, UavBoardConfig& out, std::string& error);
+// The same for a document in memory (tests, fuzzing); `name` stands for the file in errors.
+bool parse_uav_config(const std::string& text, const std::string& name, UavBoardConfig& out,
+                      std::string& error);
+
+}  // namespace colag::uav

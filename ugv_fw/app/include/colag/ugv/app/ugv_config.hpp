@@ -1,0 +1,28 @@
+#pragma once
+// ugv_fw's configuration (see colag/board/config.hpp for the rules, config/ugv.example.yaml for
+// keys).
+#include <string>
+
+#include "colag/board/config.hpp"
+#include "colag/hal/can/can_wheel_odometry.hpp"
+#include "colag/ugv/ugv_nav_config.hpp"
+
+namespace colag::ugv {
+
+struct UgvBoardConfig {
+  board::CommonBoardConfig common;
+  ugv::UgvNavConfig nav;
+  std::string can_interface = "can0";
+  hal::can::WheelProtocolConfig protocol;
+  hal::can::WheelGeometry wheels;
+  Duration control_period = std::chrono::milliseconds(20);
+  Duration planning_period = std::chrono::milliseconds(100);
+};
+
+// False with `error` = "FILE: key.path: problem".
+bool load_ugv_config(const std::string& path, UgvBoardConfig& out, std::string& error);
+// The same for a document in memory (tests, fuzzing); `name` stands for the file in errors.
+bool parse_ugv_config(const std::string& text, const std::string& name, UgvBoardConfig& out,
+                      std::string& error);
+
+}  // namespace colag::ugv

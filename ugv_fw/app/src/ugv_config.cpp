@@ -1,0 +1,78 @@
+#include "colag/ugv/app/ugv_config.hpp"
+
+#include "colag/board/config.hpp"
+
+namespace colag::ugv {
+
+namespace {
+using board::child;
+
+std::uint32_t can_id(board::Reader& r, const YAML::Node& can, const char* key, std::uint32_t id,
+                     bool extended) {
+  r.get(can, "can", key, id, 0u, extended ? 0x1FFFFFFFu : 0x7FFu);
+  return id;
+}
+
+// The UGV's own sections; `doc` is const: const access never inserts keys.
+void read_ugv_sections(board::Reader& r, const YAML::Node& doc, UgvBoardConfig& c) {
+  const YAML::Node robot = child(doc, "robot");
+  r.only(robot, "robot", {"id", "goal", "start_guess", "radius_m"});
+  int id = 1;
+  r.get(robot, "robot", "id", id, 0, static_cast<int>(limits::kMaxUgvs) - 1);
+  c.nav.id = static_cast<RobotId>(id);
+  double goal[2];
+  if (r.vector(robot, "robot", "goal", goal, 2)) c.nav.goal = Vec2(goal[0], goal[1]);
+  double start[3];
+  if (r.vector(robot, "robot", "start_guess", start, 3)) {
+    c.nav.has_start_guess = true;
+    c.nav.start_guess = Pose2{Vec2(start[0], start[1]), start[2]};
+  }
+  r.get(robot, "robot", "radius_m", c.nav.body_radius_m, 0.05, 2.0);
+
+  const YAML::Node can = child(doc, "can");
+  r.only(can, "can", {"interface", "counts_id", "speeds_id", "command_id", "extended_ids"});
+  r.get(can, "can", "interface", c.can_interface);
+  r.get(can, "can", "extended_ids", c.protocol.extended_ids);
+  c.protocol.counts_id = can_id(r, can, "counts_id", c.protocol.counts_id, c.protocol.extended_ids);
+  c.protocol.speeds_id = can_id(r, can, "speeds_id", c.protocol.speeds_id, c.protocol.extended_ids);
+  c.protocol.command_id =
+      can_id(r, can, "command_id", c.protocol.command_id, c.protocol.extended_ids);
+  if (r.ok() && (c.protocol.counts_id == c.protocol.speeds_id ||
+                 c.protocol.counts_id == c.protocol.command_id ||
+                 c.protocol.speeds_id == c.protocol.command_id))
+    r.fail("can", "counts_id, speeds_id and command_id must differ");
+  if (r.ok() && c.can_interface.empty()) r.fail("can.interface", "must not be empty");
+
+  const YAML::Node wheels = child(doc, "wheels");
+  r.only(wheels, "wheels", {"radius_m", "track_m", "ticks_per_rev", "max_speed_mps"});
+  r.get(wheels, "wheels", "radius_m", c.wheels.wheel_radius_m, 0.005, 1.0);
+  r.get(wheels, "wheels", "track_m", c.wheels.track_width_m, 0.05, 5.0);
+  r.get(wheels, "wheels", "ticks_per_rev", c.wheels.ticks_per_revolution, 1u, 1u << 20);
+  r.get(wheels, "wheels", "max_speed_mps", c.wheels.max_wheel_speed_mps, 0.01, 10.0);
+
+  const YAML::Node rates = child(doc, "rates");
+  r.only(rates, "rates", {"control_hz", "planning_hz"});
+  r.rate(rates, "rates", "control_hz", c.control_period);
+  r.rate(rates, "rates", "planning_hz", c.planning_period);
+
+  const YAML::Node odo = child(doc, "odometry");
+  r.only(odo, "odometry", {"timeout_ms", "sigma_v", "sigma_omega"});
+  r.millis(odo, "odometry", "timeout_ms", c.nav.odometry_timeout, 10.0, 1000.0);
+  r.get(odo, "odometry", "sigma_v", c.nav.ekf.noise.sigma_v_mps, 0.0, 1.0);
+  r.get(odo, "odometry", "sigma_omega", c.nav.ekf.noise.sigma_omega_radps, 0.0, 1.0);
+}
+
+const board::ConfigSchema<UgvBoardConfig> kSchema{{"robot", "can", "wheels", "rates", "odometry"},
+                                                  read_ugv_sections};
+}  // namespace
+
+bool load_ugv_config(const std::string& path, UgvBoardConfig& out, std::string& error) {
+  return board::load_config(path, kSchema, out, error);
+}
+
+bool parse_ugv_config(const std::string& text, const std::string& name, UgvBoardConfig& out,
+                      std::string& error) {
+  return board::parse_config(text, name, kSchema, out, error);
+}
+
+}  // namespace colag::ugv
