@@ -50,9 +50,9 @@ std::size_t encode_rle(const PatchCells& in, std::size_t n, bool row_delta, std:
 }
 
 Status decode_packed(const msg::MapPatch& in, std::size_t n, PatchCells& out) {
-  if (in.data_bytes != packed_bytes(n)) return {Errc::kInvalidArgument, "packed patch: wrong size"};
+  if (in.data.count != packed_bytes(n)) return {Errc::kInvalidArgument, "packed patch: wrong size"};
   for (std::size_t i = 0; i < packed_bytes(n) * 4; ++i) {
-    const unsigned v = (in.data[i / 4] >> (2 * (i % 4))) & 3U;
+    const unsigned v = (in.data.items[i / 4] >> (2 * (i % 4))) & 3U;
     if (i >= n) {
       if (v != 0) return {Errc::kCorrupt, "packed patch: non-zero padding"};
       continue;
@@ -65,13 +65,13 @@ Status decode_packed(const msg::MapPatch& in, std::size_t n, PatchCells& out) {
 
 Status decode_rle(const msg::MapPatch& in, std::size_t n, bool row_delta, PatchCells& out) {
   std::size_t pos = 0, cell = 0;
-  while (pos < in.data_bytes) {
+  while (pos < in.data.count) {
     std::uint32_t v = 0;
     int shift = 0;
     for (;;) {
-      if (pos == in.data_bytes) return {Errc::kCorrupt, "run-length patch: truncated run"};
+      if (pos == in.data.count) return {Errc::kCorrupt, "run-length patch: truncated run"};
       if (shift > 14) return {Errc::kCorrupt, "run-length patch: run too long"};
-      const std::uint8_t b = in.data[pos++];
+      const std::uint8_t b = in.data.items[pos++];
       v |= static_cast<std::uint32_t>(b & 0x7F) << shift;
       shift += 7;
       if ((b & 0x80) == 0) break;
@@ -105,21 +105,23 @@ Status encode_patch(const PatchCells& in, msg::MapPatch& out) {
   out.height_cells = static_cast<std::uint16_t>(in.height);
   // The smallest of the three; run-length forms only when strictly smaller than packed.
   const std::size_t packed = packed_bytes(n);
-  const std::size_t rows = encode_rle(in, n, true, out.data, packed - 1);
-  const std::size_t rle = encode_rle(in, n, false, out.data, rows > 0 ? rows - 1 : packed - 1);
+  const std::size_t rows = encode_rle(in, n, true, out.data.items, packed - 1);
+  const std::size_t rle =
+      encode_rle(in, n, false, out.data.items, rows > 0 ? rows - 1 : packed - 1);
   if (rle > 0) {
     out.encoding = msg::MapPatchEncoding::kRunLength;
-    out.data_bytes = static_cast<std::uint16_t>(rle);
+    out.data.count = static_cast<std::uint16_t>(rle);
   } else if (rows > 0) {
-    (void)encode_rle(in, n, true, out.data, rows);  // overwritten by the attempt above
+    (void)encode_rle(in, n, true, out.data.items, rows);  // overwritten by the attempt above
     out.encoding = msg::MapPatchEncoding::kRowDelta;
-    out.data_bytes = static_cast<std::uint16_t>(rows);
+    out.data.count = static_cast<std::uint16_t>(rows);
   } else {
-    encode_packed(in, n, out.data);
+    encode_packed(in, n, out.data.items);
     out.encoding = msg::MapPatchEncoding::kPacked2Bit;
-    out.data_bytes = static_cast<std::uint16_t>(packed);
+    out.data.count = static_cast<std::uint16_t>(packed);
   }
-  std::fill(out.data + out.data_bytes, out.data + limits::kMaxPatchBytes, std::uint8_t{0});
+  std::fill(out.data.items + out.data.count, out.data.items + limits::kMaxPatchBytes,
+            std::uint8_t{0});
   return Status::ok();
 }
 
@@ -127,7 +129,7 @@ Status decode_patch(const msg::MapPatch& in, PatchCells& out) {
   if (!valid_size(in.width_cells, in.height_cells)) {
     return {Errc::kInvalidArgument, "patch size out of range"};
   }
-  if (in.data_bytes > limits::kMaxPatchBytes)
+  if (in.data.count > limits::kMaxPatchBytes)
     return {Errc::kInvalidArgument, "patch payload too long"};
   const auto n = static_cast<std::size_t>(in.width_cells) * in.height_cells;
   // Decode into a scratch copy so `out` is never left half-written.

@@ -19,6 +19,13 @@ Status Schedule::add(const TaskEntry& entry) {
   return Status::ok();
 }
 
+Status Schedule::add(std::span<const TaskEntry> entries) {
+  for (const TaskEntry& e : entries) {
+    if (Status s = add(e); !s) return s;
+  }
+  return Status::ok();
+}
+
 Status Schedule::init(TimePoint start) {
   for (auto& row : rows_) {
     row.next_release = start + row.entry.offset;

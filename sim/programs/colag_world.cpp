@@ -60,7 +60,7 @@ struct RobotTraffic final : platform::SampleSink {
   explicit RobotTraffic(int ugvs) : status(static_cast<std::size_t>(ugvs)), heard(status.size()) {}
   void on_sample(msg::Topic topic, const void* sample, TimePoint now) override {
     switch (topic) {
-      case msg::Topic::kUgvStatus: {
+      case msg::topic_of<msg::UgvStatus>: {
         const auto& s = *static_cast<const msg::UgvStatus*>(sample);
         if (s.ugv_id < status.size()) {
           status[s.ugv_id] = s;
@@ -68,16 +68,16 @@ struct RobotTraffic final : platform::SampleSink {
         }
         break;
       }
-      case msg::Topic::kMapPatch:
+      case msg::topic_of<msg::MapPatch>:
         ++patches;
-        patch_bytes += static_cast<const msg::MapPatch*>(sample)->data_bytes;
+        patch_bytes += static_cast<const msg::MapPatch*>(sample)->data.count;
         break;
-      case msg::Topic::kCollisionInfo: {
+      case msg::topic_of<msg::CollisionInfo>: {
         const auto& ci = *static_cast<const msg::CollisionInfo*>(sample);
         if (!ci.cancel && ci.ugv_id < status.size()) ++requests[ci.ugv_id];
         break;
       }
-      case msg::Topic::kUavOdometry:
+      case msg::topic_of<msg::UavOdometry>:
         uav_heard = now;
         break;
       default:
@@ -238,11 +238,11 @@ int main(int argc, char** argv) {
   platform::dds::DdsTransport dds;
   platform::dds::DdsConfig dds_cfg;
   dds_cfg.domain_id = domain;
-  dds_cfg.publishes = {};  // a listener only
+  dds_cfg.publish_only<>();  // a listener only
   RobotTraffic traffic(cfg.ugvs);
   Status st = dds.init(dds_cfg);
-  for (msg::Topic t : {msg::Topic::kUgvStatus, msg::Topic::kMapPatch, msg::Topic::kCollisionInfo,
-                       msg::Topic::kUavOdometry})
+  for (msg::Topic t : {msg::topic_of<msg::UgvStatus>, msg::topic_of<msg::MapPatch>,
+                       msg::topic_of<msg::CollisionInfo>, msg::topic_of<msg::UavOdometry>})
     if (st) st = dds.subscribe(t, kAnyRobot, traffic);
   if (!st) {
     std::fprintf(stderr, "colag_world: DDS domain %u: %s (%s)\n", domain, st.message(),

@@ -107,7 +107,7 @@ void BM_OnePatch(benchmark::State& state) {
     y = y < -14 ? 14.0 : y - 0.37;
     benchmark::DoNotOptimize(sharer.make_patch(*s.map, Vec2(0.0, y), -M_PI / 2, 0.5, patch));
     state.PauseTiming();
-    ours += patch.data_bytes;
+    ours += patch.data.count;
     original += static_cast<double>(original_patch_bytes(*s.map, patch, -0.7, 0.7));
     patches += 1;
     state.ResumeTiming();

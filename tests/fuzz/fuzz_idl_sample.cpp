@@ -58,25 +58,7 @@ void run(const std::uint8_t* data, std::size_t size) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size == 0 || size > (1u << 16)) return 0;
-  switch (data[0] % 6) {
-    case 0:
-      run<msg::UavOdometry>(data + 1, size - 1);
-      break;
-    case 1:
-      run<msg::RelativePose>(data + 1, size - 1);
-      break;
-    case 2:
-      run<msg::MapPatch>(data + 1, size - 1);
-      break;
-    case 3:
-      run<msg::CollisionInfo>(data + 1, size - 1);
-      break;
-    case 4:
-      run<msg::UgvStatus>(data + 1, size - 1);
-      break;
-    case 5:
-      run<msg::SupportPlan>(data + 1, size - 1);
-      break;
-  }
+  const auto topic = static_cast<msg::Topic>(data[0] % msg::kTopicCount);
+  msg::visit_message_type(topic, [&]<class Msg>() { run<Msg>(data + 1, size - 1); });
   return 0;
 }

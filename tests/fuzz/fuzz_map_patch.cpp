@@ -32,15 +32,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   patch.resolution_m = (flags & 1) ? 0.2 : g.resolution();
   patch.origin_x_m = g.origin_x() + cx * g.resolution() + ((flags & 2) ? 0.05 : 0.0);
   patch.origin_y_m = (flags & 4) ? __builtin_nan("") : g.origin_y() + cy * g.resolution();
-  const std::size_t n = std::min(in.remaining(), sizeof(patch.data));
-  std::memcpy(patch.data, in.rest(), n);
-  patch.data_bytes = static_cast<std::uint16_t>(n);
+  const std::size_t n = std::min(in.remaining(), sizeof(patch.data.items));
+  std::memcpy(patch.data.items, in.rest(), n);
+  patch.data.count = static_cast<std::uint16_t>(n);
 
   if (colag::decode_patch(patch, decoded)) {
     COLAG_FUZZ_CHECK(decoded.width == patch.width_cells && decoded.height == patch.height_cells);
     COLAG_FUZZ_CHECK(colag::encode_patch(decoded, reencoded));
     // The encoder sends the smallest encoding; no valid payload is shorter than canonical.
-    COLAG_FUZZ_CHECK(reencoded.data_bytes <= n);
+    COLAG_FUZZ_CHECK(reencoded.data.count <= n);
     COLAG_FUZZ_CHECK(colag::decode_patch(reencoded, again));
     for (int i = 0; i < decoded.width * decoded.height; ++i)
       COLAG_FUZZ_CHECK(again.cells[static_cast<std::size_t>(i)] ==

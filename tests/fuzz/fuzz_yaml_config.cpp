@@ -17,7 +17,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       COLAG_FUZZ_CHECK(error.empty());
       COLAG_FUZZ_CHECK(c.nav.id < colag::limits::kMaxUgvs);
       COLAG_FUZZ_CHECK(c.wheels.wheel_radius_m > 0.0 && c.wheels.track_width_m > 0.0);
-      COLAG_FUZZ_CHECK(c.control_period.count() > 0 && c.planning_period.count() > 0);
+      COLAG_FUZZ_CHECK(c.nav.schedule.control.period.count() > 0 &&
+                       c.nav.schedule.planning.period.count() > 0 &&
+                       c.nav.schedule.control.budget.count() > 0);
       COLAG_FUZZ_CHECK(c.common.dds_domain <= 232);
     } else {
       COLAG_FUZZ_CHECK(error.rfind("fuzz.yaml: ", 0) == 0);

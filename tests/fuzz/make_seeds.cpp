@@ -42,7 +42,7 @@ void map_patch_seeds(const fs::path& dir) {
     put16(b, static_cast<std::uint16_t>(cx));
     put16(b, static_cast<std::uint16_t>(cy));
     b.push_back(0);
-    b.insert(b.end(), p.data, p.data + p.data_bytes);
+    b.insert(b.end(), p.data.items, p.data.items + p.data.count);
     write(dir, name, b);
   };
   PatchCells c;
@@ -96,14 +96,14 @@ void can_seeds(const fs::path& dir) {
 
 // fuzz_idl_sample: topic byte, then the XCDR1 little-endian body Cyclone DDS writes.
 template <class Msg>
-void idl_seed(const fs::path& dir, const std::string& name, std::uint8_t topic, const Msg& m) {
+void idl_seed(const fs::path& dir, const std::string& name, const Msg& m) {
   using namespace platform::dds;
   auto* sample = new IdlSample<Msg>;
   to_idl(m, *sample);
   dds_ostream_t os;
   dds_ostream_init(&os, 0, 1);
   dds_stream_write(&os, reinterpret_cast<const char*>(&sample->sample), descriptor<Msg>().m_ops);
-  Bytes b{topic};
+  Bytes b{static_cast<std::uint8_t>(msg::topic_of<Msg>)};
   b.insert(b.end(), os.m_buffer, os.m_buffer + os.m_index);
   dds_ostream_fini(&os);
   delete sample;
@@ -116,14 +116,14 @@ void idl_seeds(const fs::path& dir) {
   odo.stamp = t;
   odo.uav_id = 100;
   odo.position_m[2] = 1.5;
-  idl_seed(dir, "uav_odometry", 0, odo);
+  idl_seed(dir, "uav_odometry", odo);
   msg::RelativePose rpe;
   rpe.stamp = t;
   rpe.uav_id = 100;
   rpe.ugv_id = 2;
   rpe.position_m[2] = -1.4;
   rpe.covariance[0] = rpe.covariance[5] = 0.04;
-  idl_seed(dir, "relative_pose", 1, rpe);
+  idl_seed(dir, "relative_pose", rpe);
   auto* patch = new msg::MapPatch;
   PatchCells cells;
   cells.width = cells.height = 30;
@@ -134,25 +134,25 @@ void idl_seeds(const fs::path& dir) {
     patch->stamp = t;
     patch->ugv_id = 3;
     patch->resolution_m = 0.1;
-    idl_seed(dir, "map_patch", 2, *patch);
+    idl_seed(dir, "map_patch", *patch);
   }
   delete patch;
   msg::CollisionInfo ci;
   ci.stamp = t;
   ci.ugv_id = 1;
   ci.time_to_collision_s = 4.0;
-  idl_seed(dir, "collision_info", 3, ci);
+  idl_seed(dir, "collision_info", ci);
   msg::UgvStatus st;
   st.stamp = t;
   st.ugv_id = 4;
   st.mode = msg::UgvMode::kDriving;
-  idl_seed(dir, "ugv_status", 4, st);
+  idl_seed(dir, "ugv_status", st);
   auto* plan = new msg::SupportPlan;
   plan->stamp = t;
-  plan->stop_count = 3;
+  plan->stops.count = 3;
   for (int i = 0; i < 3; ++i)
     plan->stops[i].ugv_id = static_cast<RobotId>(i + 1);
-  idl_seed(dir, "support_plan", 5, *plan);
+  idl_seed(dir, "support_plan", *plan);
   delete plan;
 }
 

@@ -53,7 +53,8 @@ int main(int argc, char** argv) {
   cfg.domain_id = static_cast<std::uint32_t>(std::atoi(argv[2]));
   RobotId uav_id = 100;
   // The UAV's writers only (its permissions allow nothing else); the intruder tries all.
-  if (role != "intruder") cfg.publishes = {true, true, true, false, false, true};
+  if (role != "intruder")
+    cfg.publish_only<msg::UavOdometry, msg::RelativePose, msg::MapPatch, msg::SupportPlan>();
   if (role == "uav") {
     cfg.security = identity(pki, "uav", pki + "/ca.pem");
   } else if (role == "rogue") {

@@ -75,7 +75,7 @@ TEST_F(DdsPair, EveryMessageTypeArrivesEqual) {
   mp.width_cells = 50;
   mp.height_cells = 50;
   mp.encoding = msg::MapPatchEncoding::kRunLength;
-  mp.data_bytes = 321;
+  mp.data.count = 321;
   for (int i = 0; i < 321; ++i)
     mp.data[i] = static_cast<std::uint8_t>(i * 7);
   expect_round_trip(mp, 2);
@@ -97,7 +97,7 @@ TEST_F(DdsPair, EveryMessageTypeArrivesEqual) {
 
   msg::SupportPlan sp;
   sp.seq = 8;
-  sp.stop_count = 3;
+  sp.stops.count = 3;
   for (int i = 0; i < 3; ++i) {
     sp.stops[i].ugv_id = static_cast<RobotId>(i + 1);
     sp.stops[i].point_m[0] = i;
@@ -133,8 +133,7 @@ TEST_F(DdsPair, WriterOnlyForTopicsTheRobotPublishes) {
   dds::DdsTransport ugv;
   dds::DdsConfig cfg;
   cfg.domain_id = test::private_domain_id();
-  cfg.publishes.fill(false);
-  cfg.publishes[static_cast<std::size_t>(msg::Topic::kUgvStatus)] = true;
+  cfg.publish_only<msg::UgvStatus>();
   ASSERT_TRUE(ugv.init(cfg));
   EXPECT_EQ(ugv.publish(msg::MapPatch{}).code(), Errc::kInvalidArgument);
   EXPECT_TRUE(ugv.publish(msg::UgvStatus{}));

@@ -74,13 +74,13 @@ TEST(DdsSecurity, OnlyTheFleetUavReachesTheUgvAndTheMissionTrafficFlows) {
   cfg.security.permissions_ca = pki + "/ca.pem";
   cfg.security.governance = pki + "/governance.p7s";
   cfg.security.permissions = pki + "/ugv1/permissions.p7s";
-  cfg.publishes = {false, false, false, true, true, false};  // collision info, status
+  cfg.publish_only<msg::CollisionInfo, msg::UgvStatus>();
   platform::dds::DdsTransport dds;
   ASSERT_TRUE(dds.init(cfg)) << dds_strretcode(dds.last_error());
   CountBySender<msg::MapPatch> patches;
   CountBySender<msg::RelativePose> poses;
-  ASSERT_TRUE(dds.subscribe(msg::Topic::kMapPatch, 1, patches));
-  ASSERT_TRUE(dds.subscribe(msg::Topic::kRelativePose, 1, poses));
+  ASSERT_TRUE(dds.subscribe(msg::topic_of<msg::MapPatch>, 1, patches));
+  ASSERT_TRUE(dds.subscribe(msg::topic_of<msg::RelativePose>, 1, poses));
 
   const pid_t uav = spawn("uav", domain, pki, "8");
   const pid_t rogue = spawn("rogue", domain, pki, "8");

@@ -64,8 +64,12 @@ odometry: {timeout_ms: 80, sigma_v: 0.05, sigma_omega: 0.04}
   EXPECT_EQ(c.protocol.command_id, 0x401u);
   EXPECT_DOUBLE_EQ(c.wheels.wheel_radius_m, 0.08);
   EXPECT_EQ(c.wheels.ticks_per_revolution, 2048u);
-  EXPECT_EQ(c.control_period, std::chrono::milliseconds(10));
-  EXPECT_EQ(c.planning_period, std::chrono::milliseconds(200));
+  EXPECT_EQ(c.nav.schedule.control.period, std::chrono::milliseconds(10));
+  EXPECT_EQ(c.nav.schedule.planning.period, std::chrono::milliseconds(200));
+  // A budget keeps its share of the period; the transport is polled at every control tick.
+  EXPECT_EQ(c.nav.schedule.control.budget, std::chrono::microseconds(2500));
+  EXPECT_EQ(c.nav.schedule.planning.budget, std::chrono::milliseconds(100));
+  EXPECT_EQ(c.nav.schedule.transport.period, std::chrono::milliseconds(10));
   EXPECT_EQ(c.nav.odometry_timeout, std::chrono::milliseconds(80));
   EXPECT_DOUBLE_EQ(c.nav.ekf.noise.sigma_v_mps, 0.05);
 }
@@ -103,7 +107,7 @@ TEST_F(BoardConfig, EmptyFileMeansDefaults) {
   std::string error;
   ASSERT_TRUE(load_ugv_config(write("empty.yaml", ""), c, error)) << error;
   EXPECT_EQ(c.can_interface, "can0");
-  EXPECT_EQ(c.control_period, std::chrono::milliseconds(20));
+  EXPECT_EQ(c.nav.schedule.control.period, std::chrono::milliseconds(20));
   EXPECT_EQ(c.nav.odometry_timeout, std::chrono::milliseconds(60));
 }
 

@@ -101,7 +101,7 @@ TEST_F(LoopbackTest, LatencyHoldsSamplesBack) {
 }
 
 TEST_F(LoopbackTest, PerTopicFaultsLeaveOtherTopicsAlone) {
-  bus->set_faults(msg::Topic::kUgvStatus, {1.0, 0ms, 0ms, 0.0});
+  bus->set_faults(msg::topic_of<msg::UgvStatus>, {1.0, 0ms, 0ms, 0.0});
   LatestReader<msg::UgvStatus> st;
   LatestReader<msg::CollisionInfo> ci;
   ASSERT_TRUE(st.attach(*bus));
@@ -111,8 +111,8 @@ TEST_F(LoopbackTest, PerTopicFaultsLeaveOtherTopicsAlone) {
   bus->poll(TimePoint{1ms});
   EXPECT_FALSE(st.has_value());
   EXPECT_TRUE(ci.has_value());
-  EXPECT_EQ(bus->stats(msg::Topic::kUgvStatus).dropped, 1u);
-  EXPECT_EQ(bus->stats(msg::Topic::kCollisionInfo).dropped, 0u);
+  EXPECT_EQ(bus->stats(msg::topic_of<msg::UgvStatus>).dropped, 1u);
+  EXPECT_EQ(bus->stats(msg::topic_of<msg::CollisionInfo>).dropped, 0u);
 }
 
 namespace {
@@ -121,7 +121,7 @@ std::vector<std::uint32_t> lossy_run(std::uint64_t seed, double drop, double dup
   auto bus = std::make_unique<LoopbackTransport>(seed);
   bus->set_faults({drop, 5ms, jitter, dup});
   Recorder rec;
-  EXPECT_TRUE(bus->subscribe(msg::Topic::kUgvStatus, kAnyRobot, rec));
+  EXPECT_TRUE(bus->subscribe(msg::topic_of<msg::UgvStatus>, kAnyRobot, rec));
   TimePoint t{};
   for (std::uint32_t i = 0; i < 10000; ++i) {
     bus->poll(t);
@@ -166,7 +166,7 @@ TEST(LoopbackFaults, JitterReordersDeterministically) {
 TEST_F(LoopbackTest, FullInFlightPoolRefusesAndRecovers) {
   bus->set_faults({0.0, 1s, 0ms, 0.0});
   Recorder rec;
-  ASSERT_TRUE(bus->subscribe(msg::Topic::kUgvStatus, kAnyRobot, rec));
+  ASSERT_TRUE(bus->subscribe(msg::topic_of<msg::UgvStatus>, kAnyRobot, rec));
   bus->poll(TimePoint{0s});
   std::size_t refused = 0;
   for (std::uint32_t i = 0; i < limits::kLoopbackMaxInFlight + 10; ++i) {
@@ -180,7 +180,7 @@ TEST_F(LoopbackTest, FullInFlightPoolRefusesAndRecovers) {
 }
 
 TEST_F(LoopbackTest, RejectsNullSamples) {
-  EXPECT_EQ(bus->publish(msg::Topic::kUgvStatus, nullptr).code(), Errc::kInvalidArgument);
+  EXPECT_EQ(bus->publish(msg::topic_of<msg::UgvStatus>, nullptr).code(), Errc::kInvalidArgument);
   EXPECT_EQ(bus->stats().rejected, 1u);
 }
 
@@ -191,7 +191,7 @@ TEST_F(LoopbackTest, PublishAndPollAllocateNothing) {
   ASSERT_TRUE(patches.attach(*bus));
   ASSERT_TRUE(statuses.attach(*bus));
   msg::MapPatch p;
-  p.data_bytes = 100;
+  p.data.count = 100;
   colag::test::AllocationCounter counter;
   TimePoint t{};
   for (int i = 0; i < 1000; ++i) {
@@ -210,11 +210,12 @@ TEST_F(LoopbackTest, PublishAndPollAllocateNothing) {
 TEST_F(LoopbackTest, LaneOutboxKeepsSamplesUntilFlushedThenPublishesThemInOrder) {
   LaneOutbox outbox(*bus);
   Recorder rec;
-  ASSERT_TRUE(outbox.subscribe(msg::Topic::kUgvStatus, kAnyRobot, rec));  // on the shared bus
+  ASSERT_TRUE(
+      outbox.subscribe(msg::topic_of<msg::UgvStatus>, kAnyRobot, rec));  // on the shared bus
   for (std::uint32_t n = 0; n < limits::kLaneOutboxSamples; ++n)
     ASSERT_TRUE(outbox.publish(status(1, n)));
   EXPECT_EQ(outbox.publish(status(1, 99)).code(), Errc::kCapacityExceeded);
-  EXPECT_EQ(outbox.publish(msg::Topic::kUgvStatus, nullptr).code(), Errc::kInvalidArgument);
+  EXPECT_EQ(outbox.publish(msg::topic_of<msg::UgvStatus>, nullptr).code(), Errc::kInvalidArgument);
   outbox.poll(TimePoint{1ms});  // polling is the pump's job
   bus->poll(TimePoint{1ms});
   EXPECT_TRUE(rec.seen.empty());

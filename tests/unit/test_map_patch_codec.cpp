@@ -43,7 +43,7 @@ TEST(MapPatchCodec, RoundTripsRandomPatchesAndPicksTheSmallerEncoding) {
     const double mean_run = trial % 2 ? 1.5 : 80.0;  // noisy or map-like
     const PatchCells p = random_patch(rng, w, h, mean_run);
     const msg::MapPatch m = encoded(p);
-    EXPECT_LE(m.data_bytes, (w * h + 3) / 4);
+    EXPECT_LE(m.data.count, (w * h + 3) / 4);
     (m.encoding == msg::MapPatchEncoding::kRunLength  ? rle
      : m.encoding == msg::MapPatchEncoding::kRowDelta ? rows
                                                       : packed)++;
@@ -64,7 +64,7 @@ TEST(MapPatchCodec, RowDeltaCodesABoxByItsEdges) {
   }
   const msg::MapPatch m = encoded(p);
   EXPECT_EQ(m.encoding, msg::MapPatchEncoding::kRowDelta);
-  EXPECT_LE(m.data_bytes, 12);  // free, box top edge, free, box bottom edge, free
+  EXPECT_LE(m.data.count, 12);  // free, box top edge, free, box bottom edge, free
   PatchCells out;
   ASSERT_TRUE(decode_patch(m, out));
   EXPECT_TRUE(same(p, out));
@@ -80,7 +80,7 @@ TEST(MapPatchCodec, AFreePatchIsTiny) {
   p.height = 50;  // all free
   const msg::MapPatch m = encoded(p);
   EXPECT_NE(m.encoding, msg::MapPatchEncoding::kPacked2Bit);
-  EXPECT_EQ(m.data_bytes, 2);  // one run of 2500 cells
+  EXPECT_EQ(m.data.count, 2);  // one run of 2500 cells
 }
 
 TEST(MapPatchCodec, RejectsEveryMalformedPatchAndLeavesTheOutputAlone) {
@@ -105,38 +105,38 @@ TEST(MapPatchCodec, RejectsEveryMalformedPatchAndLeavesTheOutputAlone) {
   m.height_cells = limits::kMaxPatchSideCells + 1;
   rejects(m, "too tall");
   m = good;
-  m.data_bytes = static_cast<std::uint16_t>(good.data_bytes - 1);
+  m.data.count = static_cast<std::uint16_t>(good.data.count - 1);
   rejects(m, "packed payload short");
   m = good;
-  m.data_bytes = static_cast<std::uint16_t>(good.data_bytes + 1);
+  m.data.count = static_cast<std::uint16_t>(good.data.count + 1);
   rejects(m, "packed payload long");
   m = good;
   m.data[3] = 0xFF;  // cell value 3
   rejects(m, "invalid cell value");
   m = good;
   m.width_cells = 19;  // 190 cells: the last byte's padding now holds a cell
-  m.data_bytes = 48;
+  m.data.count = 48;
   m.data[47] = 0xC0;
   rejects(m, "non-zero padding");
   m = good;
   m.encoding = static_cast<msg::MapPatchEncoding>(3);
   rejects(m, "unknown encoding");
   m = good;
-  m.data_bytes = limits::kMaxPatchBytes + 1;
+  m.data.count = limits::kMaxPatchBytes + 1;
   rejects(m, "payload over the bound");
 
   m = good_rle;
-  m.data_bytes = static_cast<std::uint16_t>(good_rle.data_bytes - 1);
+  m.data.count = static_cast<std::uint16_t>(good_rle.data.count - 1);
   rejects(m, "run-length: cells missing");
   m = good_rle;
-  m.data[m.data_bytes] = 0x00;  // one extra run of one free cell
-  m.data_bytes = static_cast<std::uint16_t>(m.data_bytes + 1);
+  m.data[m.data.count] = 0x00;  // one extra run of one free cell
+  m.data.count = static_cast<std::uint16_t>(m.data.count + 1);
   rejects(m, "run-length: cells beyond the patch");
   m = good_rle;
-  m.data[m.data_bytes - 1] |= 0x80;  // the last varint claims a continuation that never comes
+  m.data[m.data.count - 1] |= 0x80;  // the last varint claims a continuation that never comes
   rejects(m, "run-length: truncated varint");
   m = good_rle;
-  m.data_bytes = 4;
+  m.data.count = 4;
   m.data[0] = m.data[1] = m.data[2] = m.data[3] = 0xFF;
   rejects(m, "run-length: overlong varint");
   m = good_rle;

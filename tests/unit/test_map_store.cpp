@@ -150,7 +150,7 @@ TEST_F(MapStoreTest, RejectsEveryMalformedPatchWithoutTouchingTheMap) {
   p.width_cells = 0;
   rejected(p, "zero width");
   p = good;
-  p.data_bytes = 0;
+  p.data.count = 0;
   rejected(p, "empty payload");
   EXPECT_EQ(map->counters().patches_applied, 0u);
   EXPECT_TRUE(map->apply(good));

@@ -19,37 +19,45 @@ TEST(Topics, TableIsCompleteAndConsistent) {
   }
   EXPECT_EQ(names.size(), kTopicCount);
   // Requests and plans must never be silently lost.
-  EXPECT_EQ(topic_info(Topic::kCollisionInfo).reliability, Reliability::kReliable);
-  EXPECT_EQ(topic_info(Topic::kMapPatch).reliability, Reliability::kReliable);
+  EXPECT_EQ(topic_info(topic_of<CollisionInfo>).reliability, Reliability::kReliable);
+  EXPECT_EQ(topic_info(topic_of<MapPatch>).reliability, Reliability::kReliable);
 }
 
 TEST(Topics, KeysAreTheRobotTheMessageIsAbout) {
   RelativePose rp;
   rp.uav_id = 0;
   rp.ugv_id = 7;
-  EXPECT_EQ(message_key(Topic::kRelativePose, &rp), 7);
+  EXPECT_EQ(message_key(topic_of<RelativePose>, &rp), 7);
   MapPatch mp;
   mp.ugv_id = 3;
-  EXPECT_EQ(message_key(Topic::kMapPatch, &mp), 3);
+  EXPECT_EQ(message_key(topic_of<MapPatch>, &mp), 3);
   CollisionInfo ci;
   ci.ugv_id = 11;
-  EXPECT_EQ(message_key(Topic::kCollisionInfo, &ci), 11);
+  EXPECT_EQ(message_key(topic_of<CollisionInfo>, &ci), 11);
   UgvStatus st;
   st.ugv_id = 15;
-  EXPECT_EQ(message_key(Topic::kUgvStatus, &st), 15);
+  EXPECT_EQ(message_key(topic_of<UgvStatus>, &st), 15);
   UavOdometry od;
   od.uav_id = 2;
-  EXPECT_EQ(message_key(Topic::kUavOdometry, &od), 2);
+  EXPECT_EQ(message_key(topic_of<UavOdometry>, &od), 2);
   SupportPlan sp;
   sp.uav_id = 1;
-  EXPECT_EQ(message_key(Topic::kSupportPlan, &sp), 1);
+  EXPECT_EQ(message_key(topic_of<SupportPlan>, &sp), 1);
 }
 
 TEST(Topics, MessagesStartWithTheirStamp) {
-  EXPECT_EQ(offsetof(UavOdometry, stamp), 0u);
-  EXPECT_EQ(offsetof(RelativePose, stamp), 0u);
-  EXPECT_EQ(offsetof(MapPatch, stamp), 0u);
-  EXPECT_EQ(offsetof(CollisionInfo, stamp), 0u);
-  EXPECT_EQ(offsetof(UgvStatus, stamp), 0u);
-  EXPECT_EQ(offsetof(SupportPlan, stamp), 0u);
+  for_each_message_type([]<class Msg>() {
+    EXPECT_EQ(Fields<Msg>::kNames[0], "stamp") << Fields<Msg>::kType;
+    EXPECT_TRUE((std::is_same_v<
+                 std::remove_cvref_t<decltype(std::get<0>(Fields<Msg>::tie(std::declval<Msg&>())))>,
+                 TimePoint>))
+        << Fields<Msg>::kType;
+  });
+}
+
+TEST(Topics, TopicOfIsTheIndexInTheTable) {
+  for_each_message_type([]<class Msg>() {
+    EXPECT_EQ(topic_info(topic_of<Msg>).size_bytes, sizeof(Msg));
+    EXPECT_STREQ(topic_info(topic_of<Msg>).name, kTopicSpec<Msg>.name);
+  });
 }

@@ -102,15 +102,12 @@ struct Rig {
     uav =
         std::make_unique<UavSupervisorTask>(UavSupervisorConfig{}, *bus, odom, *lidar, camera, fc);
     pump = std::make_unique<platform::TransportPump>(*bus);
-    EXPECT_TRUE(bus->subscribe(msg::Topic::kMapPatch, kAnyRobot, patches));
-    EXPECT_TRUE(bus->subscribe(msg::Topic::kSupportPlan, kAnyRobot, plans));
-    EXPECT_TRUE(bus->subscribe(msg::Topic::kRelativePose, kAnyRobot, rpes));
+    EXPECT_TRUE(bus->subscribe(msg::topic_of<msg::MapPatch>, kAnyRobot, patches));
+    EXPECT_TRUE(bus->subscribe(msg::topic_of<msg::SupportPlan>, kAnyRobot, plans));
+    EXPECT_TRUE(bus->subscribe(msg::topic_of<msg::RelativePose>, kAnyRobot, rpes));
     EXPECT_TRUE(ex.add({pump.get(), 10ms, 1ms}));
     EXPECT_TRUE(ex.add({sky.get(), 20ms, 5ms}));
-    EXPECT_TRUE(ex.add({&uav->control_loop(), 20ms, 2ms}));
-    EXPECT_TRUE(ex.add({&uav->mapping_loop(), 100ms, 20ms}));
-    EXPECT_TRUE(ex.add({&uav->sharing_loop(), 50ms, 5ms}));
-    EXPECT_TRUE(ex.add({&uav->scheduling_loop(), 100ms, 5ms}));
+    EXPECT_TRUE(ex.add(uav->rows()));  // the UAV's own schedule table
     EXPECT_TRUE(ex.init());
   }
   void status(RobotId id, Vec2 p, msg::UgvMode mode = msg::UgvMode::kDriving) {
@@ -168,7 +165,7 @@ TEST(UavSupervisorTask, FliesTheScheduledOrderHoversUntilCancelledThenMovesOn) {
   rig.ex.run_until(rig.ex.now() + 500ms);
   ASSERT_FALSE(rig.plans.got.empty());
   const msg::SupportPlan& plan = rig.plans.got.back();
-  ASSERT_EQ(plan.stop_count, 2);
+  ASSERT_EQ(plan.stops.count, 2);
   EXPECT_EQ(plan.stops[0].ugv_id, 0);  // the urgent one first
   EXPECT_EQ(plan.stops[1].ugv_id, 1);
   EXPECT_EQ(rig.uav->mode(), UavMode::kTransit);
@@ -263,7 +260,7 @@ TEST(UavSupervisorTask, PatchesAreHundredsOfTimesSmallerThanTheOriginalFormat) {
   std::size_t ours = 0, original = 0;
   constexpr std::size_t kOriginalHeader = 16 + 2 * 4 + 8 + 3 * 8 + 3 * 4 + 6 * 8 + 2 * 4;
   for (const auto& p : rig.patches.got) {
-    ours += p.data_bytes;
+    ours += p.data.count;
     original += original_patch_bytes(rig.uav->mapper(), p, -0.7, 0.7) - kOriginalHeader;
   }
   EXPECT_GE(static_cast<double>(original) / static_cast<double>(ours), 100.0)

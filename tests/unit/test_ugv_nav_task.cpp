@@ -103,12 +103,11 @@ struct Rig {
     bus = std::make_unique<platform::LoopbackTransport>(1);
     world = std::make_unique<MiniWorld>(*bus, odo, drive, Pose2{Vec2(0, 0), 0.0}, uav);
     ugv = std::make_unique<UgvNavTask>(config, *bus, odo, drive);
-    EXPECT_TRUE(bus->subscribe(msg::Topic::kCollisionInfo, kAnyRobot, support));
+    EXPECT_TRUE(bus->subscribe(msg::topic_of<msg::CollisionInfo>, kAnyRobot, support));
     pump = std::make_unique<platform::TransportPump>(*bus);
     EXPECT_TRUE(ex.add({pump.get(), 10ms, 1ms}));
     EXPECT_TRUE(ex.add({world.get(), 20ms, 1ms}));
-    EXPECT_TRUE(ex.add({&ugv->control_loop(), 20ms, 1ms}));
-    EXPECT_TRUE(ex.add({&ugv->planning_loop(), 100ms, 10ms}));
+    EXPECT_TRUE(ex.add(ugv->rows()));  // the UGV's own schedule table
     if (report_overruns) {
       reporter = std::make_unique<OverrunReporter>(ugv->planning_loop());
       EXPECT_TRUE(ex.add({reporter.get(), 100ms, 1ms}));

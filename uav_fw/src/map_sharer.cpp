@@ -24,8 +24,8 @@ void mark_if_at_least(std::uint8_t* __restrict mark, const std::int8_t* __restri
 // FNV-1a over the payload: detects an unchanged patch without keeping a copy of it.
 std::uint32_t checksum(const msg::MapPatch& p) {
   std::uint32_t h = 2166136261U;
-  for (std::size_t i = 0; i < p.data_bytes; ++i)
-    h = (h ^ p.data[i]) * 16777619U;
+  for (std::size_t i = 0; i < p.data.count; ++i)
+    h = (h ^ p.data.items[i]) * 16777619U;
   return h;
 }
 }  // namespace
@@ -125,7 +125,7 @@ bool MapSharer::should_send(RobotId ugv_id, TimePoint now, const msg::MapPatch& 
   const std::uint32_t sum = checksum(patch);
   const bool same = u.origin_x_m == patch.origin_x_m && u.origin_y_m == patch.origin_y_m &&
                     u.width == patch.width_cells && u.height == patch.height_cells &&
-                    u.bytes == patch.data_bytes && u.checksum == sum;
+                    u.bytes == patch.data.count && u.checksum == sum;
   if (same && !elapsed(now, u.last_sent, config_.refresh)) {
     ++counters_.skipped_unchanged;
     return false;
@@ -134,11 +134,11 @@ bool MapSharer::should_send(RobotId ugv_id, TimePoint now, const msg::MapPatch& 
   u.origin_y_m = patch.origin_y_m;
   u.width = patch.width_cells;
   u.height = patch.height_cells;
-  u.bytes = patch.data_bytes;
+  u.bytes = patch.data.count;
   u.checksum = sum;
   u.last_sent = now;
   ++counters_.patches;
-  counters_.bytes += patch.data_bytes;
+  counters_.bytes += patch.data.count;
   return true;
 }
 

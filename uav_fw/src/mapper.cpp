@@ -165,8 +165,11 @@ void Mapper::prepare(const Pose3& sensor, const hal::LidarScanView& scan, int to
     ray.hit = returns && within;
     double ux = (ex - lo.x()) * inv_res, uy = (ey - lo.y()) * inv_res, uz = (ez - lo.z()) * inv_res;
     // A non-finite point ends up here too (NaN, or infinity scaled to NaN), and is dropped.
-    if (!((ux >= 0.0) & (uy >= 0.0) & (uz >= 0.0) & (ux < size.x()) & (uy < size.y()) &
-          (uz < size.z()))) {
+    // Six comparisons and-ed without a branch each (int: & on bools is a mistake to clang).
+    const int inside = static_cast<int>(ux >= 0.0) & static_cast<int>(uy >= 0.0) &
+                       static_cast<int>(uz >= 0.0) & static_cast<int>(ux < size.x()) &
+                       static_cast<int>(uy < size.y()) & static_cast<int>(uz < size.z());
+    if (inside == 0) {
       if (!std::isfinite(ux + uy + uz)) {
         ++outside;
         continue;

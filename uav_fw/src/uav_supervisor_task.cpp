@@ -308,7 +308,7 @@ void UavSupervisorTask::publish_plan(TimePoint now, bool changed) {
   plan_.seq = static_cast<std::uint32_t>(health_.schedules);
   plan_.total_lateness_s = schedule_.cost.lateness_s;
   for (const std::uint8_t k : schedule_.order) {
-    msg::SupportStop& stop = plan_.stops[plan_.stop_count++];
+    msg::SupportStop& stop = plan_.stops[plan_.stops.count++];
     stop.ugv_id = stop_ugv_[k - 1u];
     const Vec2 sp = requests_[stop.ugv_id].support;
     stop.point_m[0] = sp.x();
@@ -346,8 +346,8 @@ void UavSupervisorTask::scheduling_step(TimePoint now) {
   }
   if (at_stop_) {
     mode_ = UavMode::kHover;
-    orbit_phase_ +=
-        config_.orbit_speed_mps / config_.orbit_radius_m * 0.1;  // this loop runs at 10 Hz
+    orbit_phase_ += config_.orbit_speed_mps / config_.orbit_radius_m *
+                    to_seconds(config_.schedule.scheduling.period);
     const Vec2 orbit =
         target + config_.orbit_radius_m * Vec2(std::cos(orbit_phase_), std::sin(orbit_phase_));
     flight_.set_target(orbit, now, here, flight_layer_);

@@ -20,11 +20,9 @@
 #include <string>
 
 #include "colag/board/program.hpp"
-#include "colag/hal/sim/sim_devices.hpp"
-#include "colag/platform/dds/dds_transport.hpp"
-#include "colag/platform/worker_pool.hpp"
+#include "colag/hal/linux/camera_rpe.hpp"
+#include "colag/uav/app/uav_board.hpp"
 #include "colag/uav/app/uav_config.hpp"
-#include "colag/uav/uav_supervisor_task.hpp"
 
 using namespace colag;
 
@@ -51,63 +49,26 @@ class CameraReport final : public platform::Task {
   std::array<hal::RelativePoseDetection, limits::kMaxRpeDetectionsPerFrame> seen_{};
 };
 
-// The mission on the simulated UAV (SITL): the same task table as on a board.
-int run_sim_mission(const uav::UavBoardConfig& cfg, double seconds_to_run, double time_scale) {
-  platform::RealtimeExecutor exec(time_scale);
-  const std::uint32_t sim_domain = hal::sim::sim_domain_for(cfg.common.dds_domain);
-  static hal::sim::SimLink link;  // static: the devices and the task refer to it until exit
-  if (const Status s = link.init(sim_domain, hal::sim::SimLink::Side::kUav); !s) {
-    std::fprintf(stderr, "uav_fw: sim link on DDS domain %u: %s (%s)\n", sim_domain, s.message(),
-                 dds_strretcode(link.last_error()));
+// The mission (SITL so far: robot.hal sim). The board is static storage: it holds the
+// mapper's grids (tens of MB).
+int run_mission(const uav::UavBoardConfig& cfg, const board::ProgramArgs& args) {
+  static std::optional<uav::UavBoard> storage;
+  uav::UavBoard& uav = storage.emplace(cfg, args.time_scale);
+  board::print_realtime_setup("uav_fw", uav.executor().apply(cfg.common.realtime));
+  std::string error;
+  if (!uav.start(error)) {
+    std::fprintf(stderr, "uav_fw: %s\n", error.c_str());
     return board::kExitDevice;
   }
-  static hal::sim::SimUavDevices devices(link);
-  platform::dds::DdsTransport dds;
-  platform::dds::DdsConfig dds_cfg;
-  dds_cfg.domain_id = cfg.common.dds_domain;
-  dds_cfg.partition = cfg.common.dds_partition.c_str();
-  dds_cfg.security = cfg.common.dds_security;
-  dds_cfg.publishes = {};  // the UAV announces only what it sends
-  for (msg::Topic t : {msg::Topic::kUavOdometry, msg::Topic::kRelativePose, msg::Topic::kMapPatch,
-                       msg::Topic::kSupportPlan})
-    dds_cfg.publishes[static_cast<std::size_t>(t)] = true;
-  if (const Status s = dds.init(dds_cfg); !s) {
-    std::fprintf(stderr, "uav_fw: DDS: %s (%s)\n", s.message(), dds_strretcode(dds.last_error()));
-    return board::kExitDevice;
-  }
-  uav::UavSupervisorConfig uc;
-  uc.id = cfg.id;
-  platform::WorkerPool pool(1);  // mapping may use a second core
-  // The mapper's grids (tens of MB): static storage, like ugv_fw's task.
-  static std::optional<uav::UavSupervisorTask> task_storage;
-  uav::UavSupervisorTask& task =
-      task_storage.emplace(uc, dds, devices, devices, devices, devices, &pool);
-  platform::TransportPump pump(dds);
-  using std::chrono::milliseconds;
-  Status st = exec.add({&pump, milliseconds(10), milliseconds(2)});
-  if (st) st = exec.add({&task.control_loop(), milliseconds(20), milliseconds(5)});
-  if (st) st = exec.add({&task.mapping_loop(), milliseconds(100), milliseconds(50)});
-  if (st) st = exec.add({&task.sharing_loop(), milliseconds(50), milliseconds(10)});
-  if (st) st = exec.add({&task.scheduling_loop(), milliseconds(100), milliseconds(20)});
-  board::print_realtime_setup("uav_fw", exec.apply(cfg.common.realtime));
-  if (st) st = exec.init();
-  if (!st) {
-    std::fprintf(stderr, "uav_fw: start-up: %s\n", st.message());
-    return board::kExitDevice;
-  }
-  std::printf("uav_fw: mission on the simulated UAV (sim link on DDS domain %u)\n", sim_domain);
+  std::printf("uav_fw: mission on the simulated UAV (sim link on DDS domain %u)\n",
+              hal::sim::sim_domain_for(cfg.common.dds_domain));
   std::fflush(stdout);
-  board::stop_on_signals(exec);
-  const TimePoint end =
-      seconds_to_run > 0.0 ? exec.clock().now() + seconds(seconds_to_run) : TimePoint::max();
-  exec.run_until(end);
+  board::stop_on_signals(uav.executor());
+  const TimePoint now = uav.executor().clock().now();
+  uav.run(args.seconds > 0.0 ? now + seconds(args.seconds) : TimePoint::max());
   std::printf("uav_fw: stopping\n");
-  board::print_task_stats("uav_fw", exec.schedule());
-  std::printf("uav_fw: map patches %llu (%llu bytes), schedules %llu, malformed sim samples %llu\n",
-              static_cast<unsigned long long>(task.sharer().counters().patches),
-              static_cast<unsigned long long>(task.sharer().counters().bytes),
-              static_cast<unsigned long long>(task.health().schedules),
-              static_cast<unsigned long long>(devices.malformed()));
+  board::print_task_stats("uav_fw", uav.schedule());
+  uav.print_counters("uav_fw");
   return board::kExitOk;
 }
 
@@ -125,17 +86,12 @@ void describe(const uav::UavBoardConfig& cfg) {
 }
 
 int run(const uav::UavBoardConfig& cfg, const board::ProgramArgs& args) {
-  if (cfg.sim_hal) return run_sim_mission(cfg, args.seconds, args.time_scale);
+  if (cfg.sim_hal) return run_mission(cfg, args);
   if (args.time_scale != 1.0) {
     std::fprintf(stderr, "uav_fw: --time-scale is for the simulated HAL (robot.hal: sim)\n");
     return board::kExitUsage;
   }
-  if (args.seconds < 0.0) {
-    std::fprintf(stderr,
-                 "uav_fw: no flight-controller, odometry or LiDAR driver for this board yet "
-                 "(only simulated ones exist); run --camera-test to bring up the camera\n");
-    return board::kExitDevice;
-  }
+  if (args.seconds < 0.0) return run_mission(cfg, args);  // says what is missing
 
   platform::RealtimeExecutor exec;
   linux_hal::CameraRpe camera(cfg.rpe, cfg.camera, exec.clock());

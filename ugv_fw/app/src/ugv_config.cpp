@@ -52,8 +52,10 @@ void read_ugv_sections(board::Reader& r, const YAML::Node& doc, UgvBoardConfig& 
 
   const YAML::Node rates = child(doc, "rates");
   r.only(rates, "rates", {"control_hz", "planning_hz"});
-  r.rate(rates, "rates", "control_hz", c.control_period);
-  r.rate(rates, "rates", "planning_hz", c.planning_period);
+  UgvSchedule& sched = c.nav.schedule;
+  r.rate(rates, "rates", "control_hz", sched.control);
+  r.rate(rates, "rates", "planning_hz", sched.planning);
+  sched.transport = sched.transport.at_period(sched.control.period);  // polled every control tick
 
   const YAML::Node odo = child(doc, "odometry");
   r.only(odo, "odometry", {"timeout_ms", "sigma_v", "sigma_omega"});

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "colag/common/time.hpp"
+#include "colag/platform/task.hpp"
 
 namespace colag::board {
 
@@ -70,12 +71,13 @@ class Reader {
       fail(join(path, key), "expected true or false");
     }
   }
-  // A period given as a rate in Hz.
-  void rate(const YAML::Node& node, const std::string& path, const char* key, Duration& out) {
+  // A loop's rate in Hz: its period changes, its budget keeps its share of the period.
+  void rate(const YAML::Node& node, const std::string& path, const char* key,
+            platform::LoopTiming& loop) {
     double hz = 0.0;
     const bool present = static_cast<bool>(child(node, key));
     get(node, path, key, hz, 0.1, 1000.0);
-    if (present && ok()) out = period_of_hz(hz);
+    if (present && ok()) loop = loop.at_period(period_of_hz(hz));
   }
   void millis(const YAML::Node& node, const std::string& path, const char* key, Duration& out,
               double lo, double hi) {

@@ -28,7 +28,7 @@ struct PatchCells {
   CellState at(int x, int y) const { return cells[static_cast<std::size_t>(y * width + x)]; }
 };
 
-// Writes width, height, encoding, data and data_bytes of `out` (the caller sets the rest).
+// Writes width, height, encoding and data of `out` (the caller sets the rest).
 Status encode_patch(const PatchCells& in, msg::MapPatch& out);
 // Decodes and validates the payload of `in`; `out` is untouched on failure.
 Status decode_patch(const msg::MapPatch& in, PatchCells& out);

@@ -2,7 +2,9 @@
 #include <cstdint>
 
 #include "colag/common/time.hpp"
+#include "colag/msg/fields.hpp"
 #include "colag/msg/robot_id.hpp"
+#include "colag/msg/topic.hpp"
 
 namespace colag::msg {
 
@@ -18,5 +20,12 @@ struct CollisionInfo {
   double time_to_collision_s = 0.0;  // t_pc, counted from `stamp`
   friend bool operator==(const CollisionInfo&, const CollisionInfo&) = default;
 };
+COLAG_MESSAGE_FIELDS(CollisionInfo, stamp, ugv_id, seq, cancel, collision_point_m, support_point_m,
+                     time_to_collision_s);
+
+// Reliable, and only the latest per UGV is kept, so a cancel always supersedes its request.
+template <>
+inline constexpr TopicSpec<CollisionInfo> kTopicSpec<CollisionInfo> = {
+    "colag_collision_info", &CollisionInfo::ugv_id, Reliability::kReliable, 1, Duration::zero()};
 
 }  // namespace colag::msg

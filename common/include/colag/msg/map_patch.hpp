@@ -3,7 +3,10 @@
 
 #include "colag/common/limits.hpp"
 #include "colag/common/time.hpp"
+#include "colag/msg/fields.hpp"
 #include "colag/msg/robot_id.hpp"
+#include "colag/msg/sequence.hpp"
+#include "colag/msg/topic.hpp"
 
 namespace colag::msg {
 
@@ -11,6 +14,10 @@ enum class MapPatchEncoding : std::uint8_t {
   kPacked2Bit = 0,  // 2 bits per cell, row-major from (0,0), cell 0 in the low bits of byte 0
   kRunLength = 1,   // runs of one state (see common/map_patch_codec)
   kRowDelta = 2,    // runs over each cell XOR the cell one row below (see common/map_patch_codec)
+};
+template <>
+struct EnumRange<MapPatchEncoding> {
+  static constexpr MapPatchEncoding kLast = MapPatchEncoding::kRowDelta;
 };
 
 // A 2-D window of the UAV's map, classified for ground robots (UAV -> one UGV, ~5 Hz each).
@@ -26,9 +33,16 @@ struct MapPatch {
   std::uint16_t width_cells = 0;   // along x
   std::uint16_t height_cells = 0;  // along y
   MapPatchEncoding encoding = MapPatchEncoding::kPacked2Bit;
-  std::uint16_t data_bytes = 0;  // used bytes of data[]
-  std::uint8_t data[limits::kMaxPatchBytes] = {};
+  Sequence<std::uint8_t, limits::kMaxPatchBytes>
+      data;  // the encoded cells (common/map_patch_codec)
   friend bool operator==(const MapPatch&, const MapPatch&) = default;
 };
+COLAG_MESSAGE_FIELDS(MapPatch, stamp, uav_id, ugv_id, seq, resolution_m, origin_x_m, origin_y_m,
+                     width_cells, height_cells, encoding, data);
+
+// Every patch must arrive (a UGV plans on it): reliable. Filed under the UGV it is for.
+template <>
+inline constexpr TopicSpec<MapPatch> kTopicSpec<MapPatch> = {
+    "colag_map_patch", &MapPatch::ugv_id, Reliability::kReliable, 4, Duration::zero()};
 
 }  // namespace colag::msg

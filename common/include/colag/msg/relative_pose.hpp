@@ -1,6 +1,8 @@
 #pragma once
 #include "colag/common/time.hpp"
+#include "colag/msg/fields.hpp"
 #include "colag/msg/robot_id.hpp"
+#include "colag/msg/topic.hpp"
 
 namespace colag::msg {
 
@@ -16,5 +18,11 @@ struct RelativePose {
   double covariance[16] = {};
   friend bool operator==(const RelativePose&, const RelativePose&) = default;
 };
+COLAG_MESSAGE_FIELDS(RelativePose, stamp, uav_id, ugv_id, position_m, orientation_wxyz, covariance);
+
+// Each one corrects the UGV's estimate: reliable. Filed under the UGV it is about.
+template <>
+inline constexpr TopicSpec<RelativePose> kTopicSpec<RelativePose> = {
+    "colag_relative_pose", &RelativePose::ugv_id, Reliability::kReliable, 8, Duration::zero()};
 
 }  // namespace colag::msg

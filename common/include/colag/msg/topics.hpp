@@ -1,10 +1,12 @@
 #pragma once
-// The robot-to-robot topics: one table with each topic's name and quality of service, used by
-// every transport (the DDS transport creates its topics and QoS from it), and the static
-// mapping from message type to topic and key.
+// The robot-to-robot topics: one per message in `Messages`. A message declares itself in its
+// own header (the struct, its field list, its topic: name, key, QoS); everything else is derived
+// from that: the topic table every transport uses, the DDS IDL and conversions (generated), the
+// round-trip and fuzz tests. Adding a topic is one declaration and one line in Messages.
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <tuple>
 #include <type_traits>
 
 #include "colag/common/time.hpp"
@@ -17,17 +19,38 @@
 
 namespace colag::msg {
 
-enum class Topic : std::uint8_t {
-  kUavOdometry,
-  kRelativePose,
-  kMapPatch,
-  kCollisionInfo,
-  kUgvStatus,
-  kSupportPlan,
-};
-inline constexpr std::size_t kTopicCount = 6;
+// Every message that crosses between robots, in topic order.
+using Messages =
+    std::tuple<UavOdometry, RelativePose, MapPatch, CollisionInfo, UgvStatus, SupportPlan>;
 
-enum class Reliability : std::uint8_t { kBestEffort, kReliable };
+inline constexpr std::size_t kTopicCount = std::tuple_size_v<Messages>;
+
+// A topic: the index of its message in Messages.
+enum class Topic : std::uint8_t {};
+
+namespace detail {
+template <class Msg, class List>
+struct IndexOf;
+template <class Msg, class... Ms>
+struct IndexOf<Msg, std::tuple<Ms...>> {
+  static constexpr std::size_t value = [] {
+    constexpr bool same[] = {std::is_same_v<Msg, Ms>...};
+    for (std::size_t i = 0; i < sizeof...(Ms); ++i)
+      if (same[i]) return i;
+    return sizeof...(Ms);
+  }();
+};
+}  // namespace detail
+
+template <class Msg>
+inline constexpr Topic topic_of = [] {
+  constexpr std::size_t i = detail::IndexOf<Msg, Messages>::value;
+  static_assert(i < kTopicCount, "not a message of msg::Messages");
+  return static_cast<Topic>(i);
+}();
+
+template <std::size_t I>
+using MessageAt = std::tuple_element_t<I, Messages>;
 
 struct TopicInfo {
   Topic topic;
@@ -38,23 +61,14 @@ struct TopicInfo {
   Duration deadline;            // expected max gap between samples of one key; 0 = none
 };
 
-// Why these QoS: odometry is high-rate and superseded quickly (best effort, a short history so
-// the UGV can match RPE stamps); RPE, map patches, requests and plans must arrive (reliable);
-// CollisionInfo keeps only the latest per UGV, so a cancel always supersedes its request.
-inline constexpr std::array<TopicInfo, kTopicCount> kTopicTable = {{
-    {Topic::kUavOdometry, "colag_uav_odometry", sizeof(UavOdometry), Reliability::kBestEffort, 16,
-     std::chrono::milliseconds(200)},
-    {Topic::kRelativePose, "colag_relative_pose", sizeof(RelativePose), Reliability::kReliable, 8,
-     Duration::zero()},
-    {Topic::kMapPatch, "colag_map_patch", sizeof(MapPatch), Reliability::kReliable, 4,
-     Duration::zero()},
-    {Topic::kCollisionInfo, "colag_collision_info", sizeof(CollisionInfo), Reliability::kReliable,
-     1, Duration::zero()},
-    {Topic::kUgvStatus, "colag_ugv_status", sizeof(UgvStatus), Reliability::kBestEffort, 4,
-     std::chrono::milliseconds(500)},
-    {Topic::kSupportPlan, "colag_support_plan", sizeof(SupportPlan), Reliability::kReliable, 1,
-     Duration::zero()},
-}};
+inline constexpr std::array<TopicInfo, kTopicCount> kTopicTable =
+    []<std::size_t... I>(std::index_sequence<I...>) {
+  return std::array<TopicInfo, kTopicCount>{
+      TopicInfo{static_cast<Topic>(I), kTopicSpec<MessageAt<I>>.name, sizeof(MessageAt<I>),
+                kTopicSpec<MessageAt<I>>.reliability, kTopicSpec<MessageAt<I>>.history_depth,
+                kTopicSpec<MessageAt<I>>.deadline}...};
+}
+(std::make_index_sequence<kTopicCount>{});
 
 constexpr const TopicInfo& topic_info(Topic t) {
   return kTopicTable[static_cast<std::size_t>(t)];
@@ -62,58 +76,29 @@ constexpr const TopicInfo& topic_info(Topic t) {
 
 // Message type -> topic, and the key (robot id) each sample is filed under.
 template <class Msg>
-struct MessageTraits;
-
-template <>
-struct MessageTraits<UavOdometry> {
-  static constexpr Topic kTopic = Topic::kUavOdometry;
-  static RobotId key(const UavOdometry& m) { return m.uav_id; }
-};
-template <>
-struct MessageTraits<RelativePose> {
-  static constexpr Topic kTopic = Topic::kRelativePose;
-  static RobotId key(const RelativePose& m) { return m.ugv_id; }  // the UGV it is about
-};
-template <>
-struct MessageTraits<MapPatch> {
-  static constexpr Topic kTopic = Topic::kMapPatch;
-  static RobotId key(const MapPatch& m) { return m.ugv_id; }  // the UGV it is for
-};
-template <>
-struct MessageTraits<CollisionInfo> {
-  static constexpr Topic kTopic = Topic::kCollisionInfo;
-  static RobotId key(const CollisionInfo& m) { return m.ugv_id; }
-};
-template <>
-struct MessageTraits<UgvStatus> {
-  static constexpr Topic kTopic = Topic::kUgvStatus;
-  static RobotId key(const UgvStatus& m) { return m.ugv_id; }
-};
-template <>
-struct MessageTraits<SupportPlan> {
-  static constexpr Topic kTopic = Topic::kSupportPlan;
-  static RobotId key(const SupportPlan& m) { return m.uav_id; }
+struct MessageTraits {
+  static constexpr Topic kTopic = topic_of<Msg>;
+  static RobotId key(const Msg& m) { return m.*kTopicSpec<Msg>.key; }
 };
 
 // Calls f.template operator()<Msg>() with the message type of `topic`, for code that handles
-// samples type-erased (transports): `visit_message_type(t, [&]<class Msg>() { ... });`
-template <class F>
+// samples type-erased (transports): `visit_message_type(t, [&]<class Msg>() { ... });`. A topic
+// out of range is taken as the last one: check the range first where it comes from outside.
+template <std::size_t I = 0, class F>
 decltype(auto) visit_message_type(Topic topic, F&& f) {
-  switch (topic) {
-    case Topic::kUavOdometry:
-      return f.template operator()<UavOdometry>();
-    case Topic::kRelativePose:
-      return f.template operator()<RelativePose>();
-    case Topic::kMapPatch:
-      return f.template operator()<MapPatch>();
-    case Topic::kCollisionInfo:
-      return f.template operator()<CollisionInfo>();
-    case Topic::kUgvStatus:
-      return f.template operator()<UgvStatus>();
-    case Topic::kSupportPlan:
-      break;
+  if constexpr (I + 1 < kTopicCount) {
+    if (static_cast<std::size_t>(topic) != I) return visit_message_type<I + 1>(topic, f);
   }
-  return f.template operator()<SupportPlan>();
+  return f.template operator()<MessageAt<I>>();
+}
+
+// Calls f.template operator()<Msg>() for every message type, in topic order.
+template <class F>
+void for_each_message_type(F&& f) {
+  [&]<std::size_t... I>(std::index_sequence<I...>) {
+    (f.template operator()<MessageAt<I>>(), ...);
+  }
+  (std::make_index_sequence<kTopicCount>{});
 }
 
 // The key of a type-erased sample; `sample` must point to the topic's message struct.
@@ -131,22 +116,10 @@ inline constexpr std::size_t kMaxMessageBytes = [] {
   return m;
 }();
 
-template <class Msg>
-inline constexpr bool kIsMessage =
-    std::is_trivially_copyable_v<Msg>&& std::is_standard_layout_v<Msg>&& topic_info(
-        MessageTraits<Msg>::kTopic)
-        .size_bytes
-    == sizeof(Msg);
-
-static_assert(
-    [] {
-      for (std::size_t i = 0; i < kTopicCount; ++i) {
-        if (static_cast<std::size_t>(kTopicTable[i].topic) != i) return false;
-      }
-      return true;
-    }(),
-    "kTopicTable must list the topics in enum order");
-static_assert(kIsMessage<UavOdometry> && kIsMessage<RelativePose> && kIsMessage<MapPatch> &&
-              kIsMessage<CollisionInfo> && kIsMessage<UgvStatus> && kIsMessage<SupportPlan>);
+// Messages are plain structs: copied as bytes by the transports.
+static_assert([]<std::size_t... I>(std::index_sequence<I...>) {
+  return (
+      (std::is_trivially_copyable_v<MessageAt<I>> && std::is_standard_layout_v<MessageAt<I>>)&&...);
+}(std::make_index_sequence<kTopicCount>{}));
 
 }  // namespace colag::msg

@@ -2,7 +2,9 @@
 #include <cstdint>
 
 #include "colag/common/time.hpp"
+#include "colag/msg/fields.hpp"
 #include "colag/msg/robot_id.hpp"
+#include "colag/msg/topic.hpp"
 
 namespace colag::msg {
 
@@ -13,6 +15,10 @@ enum class UgvMode : std::uint8_t {
   kArrived = 3,
   kNoPath = 4,  // the planner finds no route to the goal in the current map
   kFault = 5,   // sensor or actuator failure: motors commanded to zero
+};
+template <>
+struct EnumRange<UgvMode> {
+  static constexpr UgvMode kLast = UgvMode::kFault;
 };
 
 // A UGV's estimated state (UGV -> UAV and the other UGVs, ~10 Hz).
@@ -32,5 +38,14 @@ struct UgvStatus {
   std::uint8_t degradation = 0;       // health: 0 = full work; > 0 = shedding work (overruns)
   friend bool operator==(const UgvStatus&, const UgvStatus&) = default;
 };
+COLAG_MESSAGE_FIELDS(UgvStatus, stamp, ugv_id, mode, position_m, yaw_rad, covariance, velocity_mps,
+                     yaw_rate_radps, goal_m, waiting_time_s, rejected_inputs, overruns,
+                     degradation);
+
+// Superseded by the next one 100 ms later: best effort; a UGV is expected every 500 ms.
+template <>
+inline constexpr TopicSpec<UgvStatus> kTopicSpec<UgvStatus> = {
+    "colag_ugv_status", &UgvStatus::ugv_id, Reliability::kBestEffort, 4,
+    std::chrono::milliseconds(500)};
 
 }  // namespace colag::msg

@@ -33,6 +33,7 @@ class LockstepExecutor {
   explicit LockstepExecutor(TimePoint start = TimePoint{}, const hal::Clock* stopwatch = nullptr);
 
   Status add(const TaskEntry& entry) { return schedule_.add(entry); }
+  Status add(std::span<const TaskEntry> entries) { return schedule_.add(entries); }
   Status init() { return schedule_.init(clock_.now()); }
   // Lets lanes run at the same time on `fork_join` (optional; not owned; must not be used by
   // a lane's tasks) and names who flushes their outboxes (optional; not owned).

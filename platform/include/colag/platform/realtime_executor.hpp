@@ -27,6 +27,7 @@ class RealtimeExecutor {
   // `time_scale` != 1 only for software-in-the-loop runs (see MonotonicClock).
   explicit RealtimeExecutor(double time_scale = 1.0) : clock_(time_scale) {}
   Status add(const TaskEntry& entry) { return schedule_.add(entry); }
+  Status add(std::span<const TaskEntry> entries) { return schedule_.add(entries); }
   RealtimeSetup apply(const RealtimeOptions& options);
   // Calls every task's init(); the first releases are at the time of this call (+ offsets).
   Status init() { return schedule_.init(clock_.now()); }

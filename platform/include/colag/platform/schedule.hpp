@@ -3,6 +3,7 @@
 // row's next release, and its run-time statistics. Which executor drives it decides only how
 // time passes (simulated or real).
 #include <cstdint>
+#include <span>
 
 #include "colag/common/limits.hpp"
 #include "colag/common/static_vector.hpp"
@@ -23,6 +24,8 @@ struct TaskStats {
 class Schedule {
  public:
   Status add(const TaskEntry& entry);
+  // Adds the rows in order; stops at the first one refused.
+  Status add(std::span<const TaskEntry> entries);
   // Sets every row's first release and calls each task's init() in table order.
   Status init(TimePoint start);
 

@@ -48,6 +48,22 @@ class MemberLoop final : public Task {
   Overrun overrun_;
 };
 
+// When a loop runs: a row of a robot's schedule table before it is bound to a task (each robot
+// declares its loops' timings once, e.g. ugv::UgvSchedule, and every program that runs the robot
+// builds its executor table from them).
+struct LoopTiming {
+  Duration period{};
+  Duration budget{};  // a step longer than this is an overrun
+  Duration offset{};  // first release at start + offset
+  // The same loop at another rate: the budget keeps its share of the period.
+  LoopTiming at_period(Duration p) const {
+    if (period.count() <= 0) return {p, budget, offset};
+    const double share = static_cast<double>(p.count()) / static_cast<double>(period.count());
+    return {p, Duration(static_cast<Duration::rep>(static_cast<double>(budget.count()) * share)),
+            offset};
+  }
+};
+
 // One row of an executor's schedule table.
 struct TaskEntry {
   Task* task = nullptr;
@@ -59,5 +75,10 @@ struct TaskEntry {
   // runs one robot and ignores lanes.
   int lane = 0;
 };
+
+// The row that runs `task` with `timing`, in `lane`.
+inline TaskEntry row(Task& task, const LoopTiming& timing, int lane = 0) {
+  return {&task, timing.period, timing.budget, timing.offset, lane};
+}
 
 }  // namespace colag::platform

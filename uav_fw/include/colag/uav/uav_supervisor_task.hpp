@@ -1,6 +1,6 @@
 #pragma once
 // The UAV supervisor task: mapping, map sharing, RPE relay, support scheduling and flight,
-// driven by four loops of one executor table:
+// driven by four loops of one executor table (their timing: UavSchedule):
 //   control_loop()    50 Hz: odometry -> UavOdometry, camera -> RelativePose, flight setpoints
 //   mapping_loop()    10 Hz: LiDAR scan -> 3-D map; the flight layer once a second
 //   sharing_loop()    20 Hz: a map patch to each UGV whose 5 Hz slot is due
@@ -22,11 +22,13 @@
 #include "colag/uav/map_sharer.hpp"
 #include "colag/uav/mapper.hpp"
 #include "colag/uav/scheduler.hpp"
+#include "colag/uav/uav_schedule.hpp"
 
 namespace colag::uav {
 
 struct UavSupervisorConfig {
   RobotId id = 0;
+  UavSchedule schedule;  // the loops' rates, budgets and offsets
   FlightPlannerConfig flight;
   MapperConfig mapper;
   SharerConfig sharer;
@@ -82,6 +84,14 @@ class UavSupervisorTask {
   platform::Task& mapping_loop() { return mapping_loop_; }
   platform::Task& sharing_loop() { return sharing_loop_; }
   platform::Task& scheduling_loop() { return scheduling_loop_; }
+  // The task's rows of an executor table, timed by config().schedule.
+  std::array<platform::TaskEntry, 4> rows(int lane = 0) {
+    const UavSchedule& s = config_.schedule;
+    return {platform::row(control_loop_, s.control, lane),
+            platform::row(mapping_loop_, s.mapping, lane),
+            platform::row(sharing_loop_, s.sharing, lane),
+            platform::row(scheduling_loop_, s.scheduling, lane)};
+  }
 
   const Mapper& mapper() const { return mapper_; }
   const MapSharer& sharer() const { return sharer_; }

@@ -10,12 +10,14 @@
 #include "colag/ugv/controller.hpp"
 #include "colag/ugv/support_protocol.hpp"
 #include "colag/ugv/trajectory.hpp"
+#include "colag/ugv/ugv_schedule.hpp"
 
 namespace colag::ugv {
 
 struct UgvNavConfig {
   RobotId id = 0;
   Vec2 goal = Vec2::Zero();
+  UgvSchedule schedule;  // the loops' rates, budgets and offsets
   // Where the robot is believed to start (mission plan). Used only to call the UAV before the
   // first relative pose initialises the estimator; never fused.
   bool has_start_guess = false;

@@ -1,6 +1,6 @@
 #pragma once
 // The UGV navigation task: estimator, map store, planner, controller, collision predictor and
-// support protocol, driven by two loops of one executor table:
+// support protocol, driven by two loops of one executor table (their timing: UgvSchedule):
 //   control_loop()  50 Hz: wheel odometry -> EKF predict, RPE -> EKF update, tracking -> Drive
 //   planning_loop() 10 Hz: map patches, other UGVs, (re)planning, collision prediction,
 //                          support requests, UgvStatus
@@ -50,6 +50,11 @@ class UgvNavTask {
 
   platform::Task& control_loop() { return control_loop_; }
   platform::Task& planning_loop() { return planning_loop_; }
+  // The task's rows of an executor table, timed by config().schedule: control, then planning.
+  std::array<platform::TaskEntry, 2> rows(int lane = 0) {
+    return {platform::row(control_loop_, config_.schedule.control, lane),
+            platform::row(planning_loop_, config_.schedule.planning, lane)};
+  }
 
   msg::UgvMode mode() const { return mode_; }
   const UgvEkf& estimator() const { return ekf_; }

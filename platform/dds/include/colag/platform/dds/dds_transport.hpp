@@ -1,9 +1,9 @@
 #pragma once
-// Transport over Cyclone DDS (C API): one participant per robot, one DDS topic per row of
-// msg::kTopicTable with that row's QoS, keyed by robot id. Samples are taken on the caller's
-// thread in poll(), converted back to message structs and handed to the sinks, so tasks never
-// see a DDS thread. Our code allocates nothing after init; Cyclone allocates internally when
-// serialising (that is the library's own memory, bounded by the QoS history depths).
+// Transport over Cyclone DDS (C API): one participant per robot, one DDS topic per message of
+// msg::Messages with its topic's QoS (msg::kTopicTable), keyed by robot id. Samples are taken on
+// the caller's thread in poll(), converted back to message structs and handed to the sinks, so
+// tasks never see a DDS thread. Our code allocates nothing after init; Cyclone allocates internally
+// when serialising (that is the library's own memory, bounded by the QoS history depths).
 #include <dds/dds.h>
 
 #include <array>
@@ -23,7 +23,17 @@ struct DdsConfig {
   const char* partition = "";
   // Topics this participant may write (a writer is created at init for each): a UGV need not
   // announce writers for map patches, and DDS Security permissions can forbid them.
-  std::array<bool, msg::kTopicCount> publishes = {true, true, true, true, true, true};
+  std::array<bool, msg::kTopicCount> publishes = [] {
+    std::array<bool, msg::kTopicCount> all{};
+    all.fill(true);
+    return all;
+  }();
+  // Writers for these messages' topics only.
+  template <class... Msg>
+  void publish_only() {
+    publishes = {};
+    ((publishes[static_cast<std::size_t>(msg::topic_of<Msg>)] = true), ...);
+  }
   // DDS Security (authentication, access control, encryption); off when empty.
   DdsSecurityConfig security;
 };

@@ -11,12 +11,10 @@ namespace colag::ugv {
 
 struct UgvBoardConfig {
   board::CommonBoardConfig common;
-  ugv::UgvNavConfig nav;
+  UgvNavConfig nav;  // with the schedule table (rates: changes its periods)
   std::string can_interface = "can0";
   hal::can::WheelProtocolConfig protocol;
   hal::can::WheelGeometry wheels;
-  Duration control_period = std::chrono::milliseconds(20);
-  Duration planning_period = std::chrono::milliseconds(100);
 };
 
 // False with `error` = "FILE: key.path: problem".

@@ -1,0 +1,68 @@
+#pragma once
+// What a simulated mission is: the map, the fleet, the seed, the method (ablations, the
+// self-perception baseline) and the faults injected; checked before anything is built. The
+// paper's layout of starts and goals lives here too (shared with colag_world).
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include "colag/common/geometry.hpp"
+#include "colag/sim/world/box_world.hpp"
+
+namespace colag::mission {
+
+enum class Ablation { kNone, kNoRpe, kNoUncertainty, kNoScheduling, kNoTimeWindows };
+const char* to_string(Ablation a);
+bool parse_ablation(const std::string& s, Ablation& out);
+
+// A simulated-time interval [from_s, to_s); empty when to_s <= from_s.
+struct TimeWindow {
+  double from_s = 0.0, to_s = 0.0;
+  bool contains(double t) const { return t >= from_s && t < to_s; }
+  bool empty() const { return !(to_s > from_s); }
+};
+bool parse_window(const std::string& s, TimeWindow& out);  // "T0:T1" in seconds
+
+// Fault injection: network faults on every topic of the loopback transport, outages of the UAV
+// (all its topics) or of its relative poses alone, and a wheel-encoder scale error.
+struct FaultConfig {
+  double loss = 0.0;  // share of samples dropped, 0..1
+  double latency_ms = 0.0, jitter_ms = 0.0;
+  TimeWindow uav_blackout;  // odometry, relative poses, map patches and plans all lost
+  TimeWindow rpe_blackout;  // relative poses lost
+  double odom_bias = 0.0;   // the encoders report (1 + bias) x the true motion
+  bool any() const {
+    return loss > 0.0 || latency_ms > 0.0 || jitter_ms > 0.0 || !uav_blackout.empty() ||
+           !rpe_blackout.empty() || odom_bias != 0.0;
+  }
+};
+
+struct MissionConfig {
+  std::string scenario = "dense";  // "sparse" (40 boxes), "dense" (80 boxes), or "file"
+  std::string map_file;            // PCD, when scenario == "file"
+  int ugvs = 3;                    // 1 .. limits::kMaxUgvs
+  std::uint64_t seed = 1;
+  Ablation ablation = Ablation::kNone;
+  bool self_perception = false;  // the paper's S.P. baseline: own LiDAR + true pose, no UAV
+  double max_time_s = 400.0;
+  int lidar_columns = 1200;  // horizontal resolution of the simulated LiDARs (0.3 deg)
+  double goal_tolerance_m =
+      0.5;  // "reached": stopped at the goal with the true position this close
+  double predict_horizon_m = 2.0;  // UGV collision-prediction horizon (straight-line distance)
+  int threads = 2;  // cores the simulation may use (1..8); the results do not depend on it
+  FaultConfig faults;
+  std::function<void(double fraction)> progress;  // called every simulated second (optional)
+};
+
+// False with `error` naming the option when a value is out of range.
+bool check(const MissionConfig& config, std::string& error);
+
+// The paper's layout (Sec. V): UGV i starts at (x_i, 16) heading -y and drives to (x_i, -16),
+// x = 0, -2, 2, -4, 4, ...; the UAV starts at (0, 15, 1). Shared with colag_world (SITL).
+Pose2 ugv_start(int i);
+Vec2 ugv_goal(int i);
+Vec3 uav_start();
+// The scenario's obstacles: generated from the seed (sparse / dense) or loaded (file).
+bool build_world(const MissionConfig& config, sim::BoxWorld& world, std::string& error);
+
+}  // namespace colag::mission

@@ -1,0 +1,120 @@
+#include "colag/sim/mission/mission_config.hpp"
+
+#include <cstdlib>
+
+#include "colag/common/limits.hpp"
+#include "colag/sim/world/pcd_loader.hpp"
+
+namespace colag::mission {
+
+const char* to_string(Ablation a) {
+  switch (a) {
+    case Ablation::kNone:
+      return "none";
+    case Ablation::kNoRpe:
+      return "no-rpe";
+    case Ablation::kNoUncertainty:
+      return "no-uncertainty";
+    case Ablation::kNoScheduling:
+      return "no-scheduling";
+    case Ablation::kNoTimeWindows:
+      return "no-time-windows";
+  }
+  return "?";
+}
+
+bool parse_window(const std::string& s, TimeWindow& out) {
+  const auto colon = s.find(':');
+  if (colon == std::string::npos) return false;
+  char* end = nullptr;
+  const std::string a = s.substr(0, colon), b = s.substr(colon + 1);
+  const double from = std::strtod(a.c_str(), &end);
+  if (a.empty() || *end != '\0') return false;
+  const double to = std::strtod(b.c_str(), &end);
+  if (b.empty() || *end != '\0' || !(from >= 0.0) || !(to > from)) return false;
+  out = {from, to};
+  return true;
+}
+
+bool parse_ablation(const std::string& s, Ablation& out) {
+  for (Ablation a : {Ablation::kNone, Ablation::kNoRpe, Ablation::kNoUncertainty,
+                     Ablation::kNoScheduling, Ablation::kNoTimeWindows}) {
+    if (s == to_string(a)) {
+      out = a;
+      return true;
+    }
+  }
+  return false;
+}
+
+namespace {
+
+const Vec3 kUavStart{0.0, 15.0, 1.0};
+constexpr double kStartY = 16.0, kGoalY = -16.0;
+
+// UGV i's lane: x = 0, -2, 2, -4, 4, ...
+double lane_x(int i) {
+  return (i % 2 == 1 ? -2.0 : 2.0) * ((i + 1) / 2);
+}
+
+}  // namespace
+
+bool check(const MissionConfig& cfg, std::string& error) {
+  const auto fail = [&](const std::string& e) {
+    error = e;
+    return false;
+  };
+  if (cfg.ugvs < 1 || cfg.ugvs > static_cast<int>(limits::kMaxUgvs)) {
+    return fail("--ugvs must be in 1.." + std::to_string(limits::kMaxUgvs));
+  }
+  if (!(cfg.max_time_s > 0.0)) return fail("--max-time must be > 0");
+  if (!(cfg.predict_horizon_m > 0.0 && cfg.predict_horizon_m <= 20.0))
+    return fail("--predict-horizon must be in (0, 20] m");
+  if (cfg.threads < 1 || cfg.threads > 8) return fail("--threads must be in 1..8");
+  if (cfg.lidar_columns < 60 || cfg.lidar_columns > static_cast<int>(limits::kMaxLidarColumns)) {
+    return fail("--lidar-columns must be in 60.." + std::to_string(limits::kMaxLidarColumns));
+  }
+  const FaultConfig& fc = cfg.faults;
+  if (!(fc.loss >= 0.0 && fc.loss <= 1.0)) return fail("--loss must be in 0..100 %");
+  if (!(fc.latency_ms >= 0.0 && fc.latency_ms <= 10000.0 && fc.jitter_ms >= 0.0 &&
+        fc.jitter_ms <= 10000.0))
+    return fail("--latency-ms and --jitter-ms must be in 0..10000");
+  if (!(fc.odom_bias > -0.5 && fc.odom_bias < 0.5))
+    return fail("--odom-bias must be in (-50, 50) %");
+  return true;
+}
+
+bool build_world(const MissionConfig& cfg, sim::BoxWorld& world, std::string& error) {
+  if (cfg.scenario == "sparse" || cfg.scenario == "dense") {
+    sim::MapGenConfig gen;
+    gen.boxes = cfg.scenario == "sparse" ? 40 : 80;
+    gen.seed = cfg.seed;
+    auto w = sim::generate_box_world(gen);
+    if (!w) {
+      error = w.status().message();
+      return false;
+    }
+    world = w.value();
+    return true;
+  }
+  if (cfg.scenario == "file") {
+    std::vector<Vec3> points;
+    if (!sim::load_pcd(cfg.map_file, points, error)) return false;
+    world = sim::box_world_from_points(points);
+    return true;
+  }
+  error = "unknown scenario '" + cfg.scenario + "' (sparse, dense, or a map file)";
+  return false;
+}
+
+Pose2 ugv_start(int i) {
+  return {Vec2(lane_x(i), kStartY), -M_PI / 2};
+}
+Vec2 ugv_goal(int i) {
+  return Vec2(lane_x(i), kGoalY);
+}
+Vec3 uav_start() {
+  return kUavStart;
+}
+
+}  // namespace colag::mission

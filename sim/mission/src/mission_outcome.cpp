@@ -1,0 +1,85 @@
+#include "colag/sim/mission/mission_outcome.hpp"
+
+#include <algorithm>
+#include <nlohmann/json.hpp>
+
+#include "colag/sim/world/sim_world.hpp"
+
+namespace colag::mission {
+
+void summarise(const sim::SimWorld& world, MissionOutcome& out) {
+  double reach_sum = 0.0;
+  int reached = 0;
+  const auto n = static_cast<double>(out.ugvs.size());
+  for (UgvOutcome& o : out.ugvs) {
+    o.traj_length_m = world.ugv(o.id).travelled_m();
+    o.min_clearance_m = world.min_clearance_m(o.id);
+    for (const auto& c : world.collisions())
+      o.collided = o.collided || c.ugv == o.id || c.other_ugv == o.id;
+    if (o.reached) {
+      reach_sum += o.reach_time_s;
+      ++reached;
+    }
+    out.waiting_time_s += o.waiting_time_s / n;
+    out.max_waiting_time_s = std::max(out.max_waiting_time_s, o.waiting_time_s);
+    out.ugv_traj_length_m += o.traj_length_m / n;
+  }
+  out.reach_time_s = reached > 0 ? reach_sum / reached : -1.0;
+  out.all_reached = reached == static_cast<int>(out.ugvs.size());
+  out.collisions = static_cast<int>(world.collisions().size());
+}
+
+std::string to_json(const MissionOutcome& o, bool include_wall_time) {
+  nlohmann::ordered_json j;
+  j["seed"] = o.config.seed;
+  if (o.config.faults.any()) {
+    const FaultConfig& f = o.config.faults;
+    j["faults"] = {{"loss", f.loss},
+                   {"latency_ms", f.latency_ms},
+                   {"jitter_ms", f.jitter_ms},
+                   {"uav_blackout_s", {f.uav_blackout.from_s, f.uav_blackout.to_s}},
+                   {"rpe_blackout_s", {f.rpe_blackout.from_s, f.rpe_blackout.to_s}},
+                   {"odom_bias", f.odom_bias}};
+  }
+  j["scenario"] = o.config.scenario == "file" ? o.config.map_file : o.config.scenario;
+  j["ablation"] = to_string(o.config.ablation);
+  j["self_perception"] = o.config.self_perception;
+  nlohmann::ordered_json ugvs = nlohmann::ordered_json::array();
+  for (const UgvOutcome& u : o.ugvs) {
+    nlohmann::ordered_json ju;
+    ju["id"] = u.id;
+    ju["reached"] = u.reached;
+    ju["collided"] = u.collided;
+    ju["reach_time_s"] =
+        u.reached ? nlohmann::ordered_json(u.reach_time_s) : nlohmann::ordered_json(nullptr);
+    ju["waiting_time_s"] = u.waiting_time_s;
+    ju["init_wait_s"] = u.init_wait_s;
+    ju["traj_length_m"] = u.traj_length_m;
+    ju["min_clearance_m"] = u.min_clearance_m;
+    ju["support_requests"] = u.support_requests;
+    ugvs.push_back(ju);
+  }
+  j["ugvs"] = ugvs;
+  nlohmann::ordered_json s;
+  s["reach_time_s"] = o.reach_time_s >= 0.0 ? nlohmann::ordered_json(o.reach_time_s)
+                                            : nlohmann::ordered_json(nullptr);
+  s["waiting_time_s"] = o.waiting_time_s;
+  s["max_waiting_time_s"] = o.max_waiting_time_s;
+  s["ugv_traj_length_m"] = o.ugv_traj_length_m;
+  s["uav_traj_length_m"] = o.uav_traj_length_m;
+  s["collisions"] = o.collisions;
+  s["all_reached"] = o.all_reached;
+  j["summary"] = s;
+  j["sim_time_s"] = o.sim_time_s;
+  if (include_wall_time) {
+    j["wall_time_s"] = o.wall_time_s;
+    j["realtime_factor"] = o.wall_time_s > 0.0 ? o.sim_time_s / o.wall_time_s : 0.0;
+  }
+  j["map_patches"] = o.map_patches;
+  j["map_patch_bytes"] = o.map_patch_bytes;
+  j["schedules"] = o.schedules;
+  j["schedules_exact"] = o.schedules_exact;
+  return j.dump(2);
+}
+
+}  // namespace colag::mission

@@ -1,0 +1,99 @@
+#include "colag/ugv/app/ugv_board.hpp"
+
+#include <cstdio>
+#include <cstring>
+
+namespace colag::ugv {
+
+UgvBoard::UgvBoard(const UgvBoardConfig& config, double time_scale)
+    : config_(config), executor_(time_scale) {}
+
+bool UgvBoard::open_can(std::string& error) {
+  const UgvBoardConfig& cfg = config_;
+  char text[256];
+  if (cfg.can_interface == "sim") {
+    const std::uint32_t domain = hal::sim::sim_domain_for(cfg.common.dds_domain);
+    if (const Status s =
+            sim_link_.emplace().init(domain, hal::sim::SimLink::Side::kUgv, cfg.nav.id);
+        !s) {
+      std::snprintf(text, sizeof text, "sim CAN on DDS domain %u: %s (%s)", domain, s.message(),
+                    dds_strretcode(sim_link_->last_error()));
+      error = text;
+      return false;
+    }
+    bus_ = &sim_bus_.emplace(*sim_link_, cfg.nav.id);
+    return true;
+  }
+  linux_hal::SocketCanConfig can_cfg;
+  can_cfg.interface = cfg.can_interface;
+  const std::uint32_t mask = cfg.protocol.extended_ids ? 0x1FFFFFFFu : 0x7FFu;
+  (void)can_cfg.filters.push_back({cfg.protocol.counts_id, mask, cfg.protocol.extended_ids});
+  (void)can_cfg.filters.push_back({cfg.protocol.speeds_id, mask, cfg.protocol.extended_ids});
+  linux_hal::SocketCanBus& b = socketcan_.emplace(can_cfg, executor_.clock());
+  if (const Status s = b.open(); !s) {
+    std::snprintf(text, sizeof text, "%s: %s (%s)", cfg.can_interface.c_str(), s.message(),
+                  std::strerror(b.driver_stats().last_errno));
+    error = text;
+    return false;
+  }
+  bus_ = &b;
+  return true;
+}
+
+bool UgvBoard::start(std::string& error) {
+  const UgvBoardConfig& cfg = config_;
+  if (!open_can(error)) return false;
+  odometry_.emplace(*bus_, cfg.protocol, cfg.wheels);
+  drive_.emplace(*bus_, cfg.protocol, cfg.wheels);
+
+  platform::dds::DdsConfig dds_cfg;
+  dds_cfg.domain_id = cfg.common.dds_domain;
+  dds_cfg.partition = cfg.common.dds_partition.c_str();
+  dds_cfg.security = cfg.common.dds_security;
+  dds_cfg.publish_only<msg::UgvStatus, msg::CollisionInfo>();  // what a UGV sends
+  if (const Status s = dds_.init(dds_cfg); !s) {
+    error = std::string("DDS: ") + s.message();
+    (void)stop_motors();
+    return false;
+  }
+
+  // The table: the transport first, then the task's loops, all from the UGV's schedule table.
+  UgvNavTask& task = task_.emplace(cfg.nav, dds_, *odometry_, *drive_);
+  pump_.emplace(dds_);
+  Status st = executor_.add(platform::row(*pump_, cfg.nav.schedule.transport));
+  if (st) st = executor_.add(task.rows());
+  if (st) st = executor_.init();
+  if (!st) {
+    error = std::string("start-up: ") + st.message();
+    (void)stop_motors();
+    return false;
+  }
+  return true;
+}
+
+void UgvBoard::run(TimePoint end) {
+  executor_.run_until(end);
+}
+
+bool UgvBoard::stop_motors() {
+  if (!drive_) return true;
+  const Status stopped = drive_->stop(executor_.clock().now());
+  (void)drive_->stop(executor_.clock().now());
+  return static_cast<bool>(stopped);
+}
+
+void UgvBoard::print_counters(const char* program) const {
+  if (bus_ == nullptr || !odometry_) return;
+  const auto& c = odometry_->counters();
+  std::printf(
+      "%s: CAN rx %llu, tx %llu, tx failures %llu, bad frames %llu, lost %llu, "
+      "watchdog trips %llu\n",
+      program, static_cast<unsigned long long>(bus_->stats().rx_frames),
+      static_cast<unsigned long long>(bus_->stats().tx_frames),
+      static_cast<unsigned long long>(bus_->stats().tx_failures),
+      static_cast<unsigned long long>(c.bad_checksum + c.wrong_dlc + c.unknown_id),
+      static_cast<unsigned long long>(c.lost_frames),
+      static_cast<unsigned long long>(task_ ? task_->health().watchdog_trips : 0));
+}
+
+}  // namespace colag::ugv
