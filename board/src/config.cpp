@@ -26,7 +26,8 @@ std::string relative_to(const std::string& config_file, const std::string& path)
 }
 
 void read_common(Reader& r, const YAML::Node& doc, const std::vector<std::string>& robot_sections,
-                 CommonBoardConfig& c) {
+                 CommonBoardConfig& out) {
+  CommonBoardConfig& c = out;
   std::set<std::string> sections(robot_sections.begin(), robot_sections.end());
   sections.insert({"dds", "realtime"});
   r.only(doc, "", sections);

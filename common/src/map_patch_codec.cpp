@@ -96,7 +96,7 @@ Status decode_rle(const msg::MapPatch& in, std::size_t n, bool row_delta, PatchC
 
 Status encode_patch(const PatchCells& in, msg::MapPatch& out) {
   if (!valid_size(in.width, in.height)) return {Errc::kInvalidArgument, "patch size out of range"};
-  const auto n = static_cast<std::size_t>(in.width * in.height);
+  const auto n = static_cast<std::size_t>(in.width) * static_cast<std::size_t>(in.height);
   for (std::size_t i = 0; i < n; ++i) {
     if (static_cast<unsigned>(in.cells[i]) > 2)
       return {Errc::kInvalidArgument, "invalid cell state"};

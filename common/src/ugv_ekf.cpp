@@ -18,8 +18,8 @@ void UgvEkf::reset() {
   state_ = Step{};
 }
 
-Status UgvEkf::predict(TimePoint stamp, double v, double w) {
-  if (!std::isfinite(v) || !std::isfinite(w)) {
+Status UgvEkf::predict(TimePoint stamp, double v_mps, double omega_radps) {
+  if (!std::isfinite(v_mps) || !std::isfinite(omega_radps)) {
     ++counters_.rejected_odometry;
     return {Errc::kInvalidArgument, "odometry not finite"};
   }
@@ -29,12 +29,12 @@ Status UgvEkf::predict(TimePoint stamp, double v, double w) {
   }
   Step step;
   step.t = stamp;
-  step.v = v;
-  step.w = w;
+  step.v = v_mps;
+  step.w = omega_radps;
   if (initialized_) {
     step.x = state_.x;
     step.P = state_.P;
-    propagate(step.x, step.P, v, w, to_seconds(stamp - state_.t), config_.noise);
+    propagate(step.x, step.P, v_mps, omega_radps, to_seconds(stamp - state_.t), config_.noise);
     ++counters_.predictions;
   }
   history_.push_overwrite(step);

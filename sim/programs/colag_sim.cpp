@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <exception>
 #include <fstream>
 #include <tuple>
 
@@ -47,9 +48,7 @@ void print_table(const mission::MissionOutcome& o) {
               o.sim_time_s / std::max(o.wall_time_s, 1e-9));
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   CLI::App app{"colag_sim: one simulated ColAG mission (UAV + blind UGVs) on the host"};
   mission::MissionConfig cfg;
   std::string map_file, ablation = "none", json_path, png_path;
@@ -173,4 +172,19 @@ int main(int argc, char** argv) {
     if (!quiet) std::printf("  picture: %s\n", png_path.c_str());
   }
   return 0;
+}
+
+}  // namespace
+
+// Nothing escapes as an exception: a library's (an allocation, CLI11, OpenCV) ends the program
+// with its message and exit code 2.
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "colag_sim: %s\n", e.what());
+  } catch (...) {
+    std::fprintf(stderr, "colag_sim: unexpected error\n");
+  }
+  return 2;
 }

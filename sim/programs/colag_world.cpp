@@ -13,6 +13,7 @@
 // 3 a robot never appeared or went silent.
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <exception>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -178,9 +179,7 @@ class Monitor final : public platform::Task {
   std::string failure_;
 };
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   // Line-buffered even into a pipe or journald: a log must not lose its tail on SIGTERM.
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
   CLI::App app{"colag_world: the simulated world for software-in-the-loop runs"};
@@ -317,4 +316,19 @@ int main(int argc, char** argv) {
     if (!json_path.empty()) std::printf("colag_world: metrics in %s\n", json_path.c_str());
   }
   return 0;
+}
+
+}  // namespace
+
+// Nothing escapes as an exception: a library's (an allocation, CLI11, OpenCV) ends the program
+// with its message and exit code 1.
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "colag_world: %s\n", e.what());
+  } catch (...) {
+    std::fprintf(stderr, "colag_world: unexpected error\n");
+  }
+  return 1;
 }

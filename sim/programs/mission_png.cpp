@@ -73,7 +73,7 @@ bool draw_mission(const mission::MissionTrace& t, const mission::MissionOutcome&
 
   // Legend and metrics.
   const int y0 = side + 22;
-  const auto text = [&](int x, int y, const std::string& str, cv::Scalar c = {0, 0, 0}) {
+  const auto text = [&](int x, int y, const std::string& str, const cv::Scalar& c = {0, 0, 0}) {
     cv::putText(img, str, {x, y}, cv::FONT_HERSHEY_SIMPLEX, 0.5, c, 1, cv::LINE_AA);
   };
   char line[256];

@@ -177,7 +177,8 @@ int check_log(const std::string& path, int min_commands) {
     const std::string hex = body.substr(hash + 1);
     f.dlc = static_cast<std::uint8_t>(std::min<std::size_t>(hex.size() / 2, 8));
     for (int i = 0; i < f.dlc; ++i)
-      f.data[i] = static_cast<std::uint8_t>(std::stoul(hex.substr(2 * i, 2), nullptr, 16));
+      f.data[i] = static_cast<std::uint8_t>(
+          std::stoul(hex.substr(2 * static_cast<std::size_t>(i), 2), nullptr, 16));
     hal::can::DecodedFrame d;
     if (hal::can::decode(f, protocol, d) != hal::can::DecodeError::kNone) {
       ++bad;

@@ -12,8 +12,6 @@
 #include "colag/platform/readers.hpp"
 #include "dds_test_env.hpp"
 
-extern char** environ;
-
 using namespace colag;
 using namespace std::chrono_literals;
 

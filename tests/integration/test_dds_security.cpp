@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <spawn.h>
 #include <sys/wait.h>
+#include <unistd.h>  // environ
 
 #include <chrono>
 #include <filesystem>
@@ -15,8 +16,6 @@
 
 #include "colag/platform/dds/dds_transport.hpp"
 #include "dds_test_env.hpp"
-
-extern char** environ;
 
 namespace {
 

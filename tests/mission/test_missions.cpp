@@ -9,7 +9,7 @@ using namespace colag::mission;
 
 namespace {
 
-MissionOutcome run(MissionConfig cfg) {
+MissionOutcome run(const MissionConfig& cfg) {
   std::string error;
   auto out = run_mission(cfg, nullptr, &error);
   EXPECT_TRUE(out) << error;

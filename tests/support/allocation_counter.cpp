@@ -42,18 +42,21 @@ const int g_hooks_installed = __sanitizer_install_malloc_and_free_hooks(on_mallo
 #else
 
 extern "C" {
+// glibc's own allocator entry points, which the replacements below forward to.
+// NOLINTBEGIN(bugprone-reserved-identifier,readability-identifier-naming)
 void* __libc_malloc(std::size_t size);
-void* __libc_calloc(std::size_t n, std::size_t size);
+void* __libc_calloc(std::size_t nmemb, std::size_t size);
 void* __libc_realloc(void* ptr, std::size_t size);
 void* __libc_memalign(std::size_t alignment, std::size_t size);
+// NOLINTEND(bugprone-reserved-identifier,readability-identifier-naming)
 
 void* malloc(std::size_t size) {
   note_allocation();
   return __libc_malloc(size);
 }
-void* calloc(std::size_t n, std::size_t size) {
+void* calloc(std::size_t nmemb, std::size_t size) {
   note_allocation();
-  return __libc_calloc(n, size);
+  return __libc_calloc(nmemb, size);
 }
 void* realloc(void* ptr, std::size_t size) {
   note_allocation();
@@ -67,12 +70,12 @@ void* memalign(std::size_t alignment, std::size_t size) {
   note_allocation();
   return __libc_memalign(alignment, size);
 }
-int posix_memalign(void** out, std::size_t alignment, std::size_t size) {
+int posix_memalign(void** memptr, std::size_t alignment, std::size_t size) {
   note_allocation();
   if (alignment % sizeof(void*) != 0 || (alignment & (alignment - 1)) != 0) return EINVAL;
   void* p = __libc_memalign(alignment, size);
   if (p == nullptr) return ENOMEM;
-  *out = p;
+  *memptr = p;
   return 0;
 }
 }

@@ -23,7 +23,7 @@ inline bool fill_map(MapStore& map, double x0, double y0, double x1, double y1,
       cells.height = std::min(side, c1.y - by + 1);
       for (int y = 0; y < cells.height; ++y) {
         for (int x = 0; x < cells.width; ++x) {
-          cells.cells[static_cast<std::size_t>(y * cells.width + x)] =
+          cells.cells[static_cast<std::size_t>(y) * cells.width + x] =
               state_at(g.center_of({bx + x, by + y}));
         }
       }

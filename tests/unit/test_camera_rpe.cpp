@@ -21,7 +21,7 @@ class FixedClock final : public hal::Clock {
 };
 
 std::filesystem::path temp_dir(const std::string& name) {
-  const auto dir =
+  auto dir =
       std::filesystem::temp_directory_path() / ("colag_" + name + "_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   return dir;
@@ -92,7 +92,7 @@ TEST(CameraIntrinsicsFile, LoadsOpenCvCalibrationYaml) {
 TEST(CameraIntrinsicsFile, ErrorsNameTheKey) {
   const auto dir = temp_dir("calib_bad");
   const auto write = [&](const std::string& text) {
-    const auto path = (dir / "bad.yaml").string();
+    auto path = (dir / "bad.yaml").string();
     std::ofstream(path) << text;
     return path;
   };

@@ -156,7 +156,7 @@ TEST(CollisionPredictor, ARobotAlreadyInsideTheInflationMayLeaveButNotGoCloser) 
   cfg.horizon_m = 3.0;
   CollisionPredictor predictor(cfg, forward_noise_only());
   Prediction p;
-  const auto line = [](Vec2 a, Vec2 b) {
+  const auto line = [](const Vec2& a, const Vec2& b) {
     Path path;
     (void)path.waypoints.push_back(a);
     (void)path.waypoints.push_back(b);

@@ -2,7 +2,6 @@
 // and what the struct cannot hold is rejected.
 #include <gtest/gtest.h>
 
-#include <cstring>
 #include <memory>
 
 #include "colag/common/random.hpp"
@@ -52,6 +51,17 @@ class Filler {
   Rng rng_;
 };
 
+template <class T>
+bool differs(const T& a, const T& b) {
+  if constexpr (std::is_array_v<T>) {
+    for (std::size_t i = 0; i < std::extent_v<T>; ++i)
+      if (differs(a[i], b[i])) return true;
+    return false;
+  } else {
+    return !(a == b);
+  }
+}
+
 template <class Msg>
 Msg round_trip(const Msg& in) {
   IdlSample<Msg> idl;
@@ -92,9 +102,7 @@ TEST(DdsConvert, TheRandomSamplesSetEveryField) {
       auto set = msg::Fields<Msg>::tie(*m);
       auto unset = msg::Fields<Msg>::tie(plain);
       [&]<std::size_t... I>(std::index_sequence<I...>) {
-        ((seen[I] = seen[I] || std::memcmp(&std::get<I>(set), &std::get<I>(unset),
-                                           sizeof(std::get<I>(set))) != 0),
-         ...);
+        ((seen[I] = seen[I] || differs(std::get<I>(set), std::get<I>(unset))), ...);
       }
       (std::make_index_sequence<kFields>{});
     }

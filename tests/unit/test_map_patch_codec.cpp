@@ -60,7 +60,7 @@ TEST(MapPatchCodec, RowDeltaCodesABoxByItsEdges) {
   p.width = p.height = 50;
   for (int y = 10; y < 19; ++y) {
     for (int x = 20; x < 29; ++x)
-      p.cells[static_cast<std::size_t>(y * 50 + x)] = CellState::kOccupied;
+      p.cells[static_cast<std::size_t>(y) * 50 + x] = CellState::kOccupied;
   }
   const msg::MapPatch m = encoded(p);
   EXPECT_EQ(m.encoding, msg::MapPatchEncoding::kRowDelta);

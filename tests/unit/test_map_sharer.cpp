@@ -17,6 +17,7 @@ namespace {
 // so that the map reaches the edge at x = 20).
 std::unique_ptr<Mapper> mapped_world() {
   std::vector<Pose3> poses;
+  poses.reserve(40);
   for (int k = 0; k < 30; ++k)
     poses.push_back({Vec3(0.3, 8.0 - 0.5 * k, 1.0), Quat::Identity()});
   for (int k = 0; k < 10; ++k)

@@ -42,6 +42,7 @@ double segment_to_voxel(const GridGeometry3d& g, const Vec3& a, const Vec3& b, V
 // A straight flight 1 m up: 12 m at 3 m/s, 10 Hz.
 std::vector<Pose3> straight_flight() {
   std::vector<Pose3> poses;
+  poses.reserve(40);
   for (int k = 0; k < 40; ++k)
     poses.push_back({Vec3(0.3, 8.0 - 0.3 * k, 1.0), Quat::Identity()});
   return poses;

@@ -52,8 +52,9 @@ class Sky final : public platform::Task {
       sim_->scan(world_, s.pose, pts, misses);
       (void)lidar_.set_scan(now, 8.0F, pts, misses);
       hal::scripted::ScriptedRelativePoseSensor::Frame frame;
-      for (RobotId id = 0; id < ugvs.size(); ++id) {
-        const Vec3 rel = Vec3(ugvs[id].x(), ugvs[id].y(), 0.0) - p;
+      for (std::size_t i = 0; i < ugvs.size(); ++i) {
+        const auto id = static_cast<RobotId>(i);
+        const Vec3 rel = Vec3(ugvs[i].x(), ugvs[i].y(), 0.0) - p;
         if (rel.head<2>().norm() > 5.0) continue;
         hal::RelativePoseDetection d;
         d.stamp = now;
@@ -133,7 +134,7 @@ struct Rig {
     ci.time_to_collision_s = t_pc;
     ASSERT_TRUE(bus->publish(ci));
   }
-  double distance_to(Vec2 q) const { return (sky->p.head<2>() - q).norm(); }
+  double distance_to(const Vec2& q) const { return (sky->p.head<2>() - q).norm(); }
 
   sim::BoxWorld world;
   hal::scripted::ScriptedOdometrySource odom;

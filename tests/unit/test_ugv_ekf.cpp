@@ -160,6 +160,7 @@ TEST(UgvEkf, AngleWrapAcrossPlusMinusPi) {
 TEST(UgvEkf, ALateMeasurementGivesTheSameStateAsOneInTime) {
   Rng rng(4);
   std::vector<std::pair<double, double>> odo;
+  odo.reserve(60);
   for (int k = 0; k < 60; ++k)
     odo.emplace_back(0.5 + rng.gaussian(0, 0.03), 0.1 + rng.gaussian(0, 0.03));
   const PoseMeasurement init{TimePoint{}, {Vec2(0, 0), 0.0}, rpe_covariance()};

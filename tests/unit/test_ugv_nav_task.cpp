@@ -22,7 +22,7 @@ namespace {
 class MiniWorld final : public platform::Task {
  public:
   MiniWorld(platform::Transport& bus, hal::scripted::ScriptedWheelOdometry& odo,
-            hal::scripted::RecordingDrive& drive, Pose2 start, Vec3 uav)
+            hal::scripted::RecordingDrive& drive, const Pose2& start, const Vec3& uav)
       : truth(start), bus_(bus), odo_(odo), drive_(drive), uav_(uav) {}
   const char* name() const override { return "world"; }
   void step(TimePoint now) override {
@@ -97,7 +97,7 @@ class OverrunReporter final : public platform::Task {
 };
 
 struct Rig {
-  explicit Rig(Vec2 goal, Vec3 uav = Vec3(2, 0, 2), bool report_overruns = false) {
+  explicit Rig(const Vec2& goal, const Vec3& uav = Vec3(2, 0, 2), bool report_overruns = false) {
     config.id = 0;
     config.goal = goal;
     bus = std::make_unique<platform::LoopbackTransport>(1);

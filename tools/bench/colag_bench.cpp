@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
+#include <exception>
 #include <memory>
 
 #include "bench_safety.hpp"
@@ -47,9 +48,7 @@ int run_scheduler(const std::string& path, int exact_max) {
   return 0;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   CLI::App app{"colag_bench: ColAG-fw measurements"};
   app.require_subcommand(1);
   auto* sched = app.add_subcommand("scheduler", "solve a TSPTW instance with the UAV's scheduler");
@@ -100,4 +99,19 @@ int main(int argc, char** argv) {
   if (*safety) return programs::run_safety(sopt);
   if (*speed) return programs::run_speed(popt);
   return 2;
+}
+
+}  // namespace
+
+// Nothing escapes as an exception: a library's (an allocation, CLI11, OpenCV) ends the program
+// with its message and exit code 1.
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "colag_bench: %s\n", e.what());
+  } catch (...) {
+    std::fprintf(stderr, "colag_bench: unexpected error\n");
+  }
+  return 1;
 }

@@ -11,8 +11,6 @@
 #include <fstream>
 #include <thread>
 
-extern char** environ;
-
 namespace colag::programs {
 
 std::string MissionSpec::key() const {
@@ -52,6 +50,7 @@ bool start(MissionRun& r, const std::string& sim, double max_time, int threads) 
   if (r.spec.self_perception) args.push_back("--self-perception");
   args.insert(args.end(), r.spec.fault_args.begin(), r.spec.fault_args.end());
   std::vector<char*> argv;
+  argv.reserve(args.size() + 1);
   for (auto& a : args)
     argv.push_back(a.data());
   argv.push_back(nullptr);

@@ -74,15 +74,15 @@ bool MapSharer::make_patch(const Mapper& map, const Vec2& position, double yaw, 
   // flags beyond the patch are never used). A sharing step reads ~17 000 voxels per UGV.
   constexpr int kSide = limits::kMaxPatchSideCells;
   const bool whole_rows = lo.x + kSide <= g3.cells_x();
-  const std::size_t n = static_cast<std::size_t>(kSide * cells_.height);
+  const std::size_t n = std::size_t{kSide} * static_cast<std::size_t>(cells_.height);
   std::fill_n(occupied_.begin(), n, 0);
   std::fill_n(seen_low_.begin(), n, 0);
   const std::int8_t unknown = map.raw_unknown(), occupied = map.raw_occupied();
   for (int z = z0 - 1; z < z1; ++z) {
     for (int y = 0; y < cells_.height; ++y) {
       const std::int8_t* row = map.row(lo.y + y, z) + lo.x;
-      std::uint8_t* seen = &seen_low_[static_cast<std::size_t>(y * kSide)];
-      std::uint8_t* occ = &occupied_[static_cast<std::size_t>(y * kSide)];
+      std::uint8_t* seen = &seen_low_[static_cast<std::size_t>(y) * kSide];
+      std::uint8_t* occ = &occupied_[static_cast<std::size_t>(y) * kSide];
       if (z <= z0) {
         if (whole_rows) {
           mark_if_not(seen, row, kSide, unknown);
@@ -101,8 +101,8 @@ bool MapSharer::make_patch(const Mapper& map, const Vec2& position, double yaw, 
   }
   for (int y = 0; y < cells_.height; ++y) {
     for (int x = 0; x < cells_.width; ++x) {
-      const std::size_t i = static_cast<std::size_t>(y * kSide + x);
-      cells_.cells[static_cast<std::size_t>(y * cells_.width + x)] =
+      const std::size_t i = static_cast<std::size_t>(y) * kSide + x;
+      cells_.cells[static_cast<std::size_t>(y) * cells_.width + x] =
           occupied_[i] != 0 ? CellState::kOccupied
                             : (seen_low_[i] != 0 ? CellState::kFree : CellState::kUnknown);
     }

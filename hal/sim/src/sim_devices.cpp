@@ -96,7 +96,8 @@ bool SimUavDevices::poll(hal::LidarScanView& out) {
     misses_.clear();
     const std::int16_t* v = scan.xyz_mm._buffer;
     for (std::uint32_t i = 0; i < values / 3; ++i) {
-      const hal::LidarPoint p{v[3 * i] * 1e-3F, v[3 * i + 1] * 1e-3F, v[3 * i + 2] * 1e-3F};
+      const std::size_t k = std::size_t{3} * i;
+      const hal::LidarPoint p{v[k] * 1e-3F, v[k + 1] * 1e-3F, v[k + 2] * 1e-3F};
       (i < scan.return_count ? points_ : misses_).push_back(p);  // within the reserved capacity
     }
     out = {time_at_nanoseconds(scan.stamp_ns), scan.max_range_m, points_, misses_};

@@ -16,7 +16,7 @@ std::int16_t mm(float v) {
 
 WorldBridge::WorldBridge(hal::sim::SimLink& link, SimWorld& world, bool with_uav)
     : link_(link), world_(world), with_uav_(with_uav) {
-  xyz_mm_.reserve(3 * 2 * limits::kMaxLidarPoints);
+  xyz_mm_.reserve(std::size_t{3} * 2 * limits::kMaxLidarPoints);
 }
 
 void WorldBridge::step() {

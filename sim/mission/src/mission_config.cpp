@@ -54,7 +54,8 @@ constexpr double kStartY = 16.0, kGoalY = -16.0;
 
 // UGV i's lane: x = 0, -2, 2, -4, 4, ...
 double lane_x(int i) {
-  return (i % 2 == 1 ? -2.0 : 2.0) * ((i + 1) / 2);
+  return (i % 2 == 1 ? -2.0 : 2.0) *
+         ((i + 1) / 2);  // NOLINT(bugprone-integer-division): the lane number
 }
 
 }  // namespace

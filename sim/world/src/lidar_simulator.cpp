@@ -184,8 +184,8 @@ void LidarSimulator::scan(const BoxWorld& world, const Pose3& sensor,
         }
         const std::size_t pts0 = n_pts, mis0 = n_mis;
         for (int b = 0; b < pattern_.beams; ++b) {
-          const Vec3& local = directions_[static_cast<std::size_t>(c * pattern_.beams + b)];
-          double t;  // to the nearest of the ground and the boxes
+          const Vec3& local = directions_[static_cast<std::size_t>(c) * pattern_.beams + b];
+          double t = 0.0;  // to the nearest of the ground and the boxes
           if (level) {
             const LevelBeam& beam = level_beams_[static_cast<std::size_t>(b)];
             t = beam.ground;

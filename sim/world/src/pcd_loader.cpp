@@ -135,7 +135,7 @@ bool parse_pcd(const std::string& bytes, std::vector<Vec3>& points, std::string&
       if (line.empty() || line == "\r") continue;
       std::istringstream ls(line);
       std::vector<double> values;
-      double v;
+      double v = 0.0;
       while (ls >> v)
         values.push_back(v);
       if (!ls.eof() || values.size() != column) {
@@ -158,7 +158,7 @@ bool parse_pcd(const std::string& bytes, std::vector<Vec3>& points, std::string&
       Vec3 q;
       for (int a = 0; a < 3; ++a) {
         if (sizes[static_cast<std::size_t>(index[a])] == 4) {
-          float f;
+          float f = 0.0F;
           std::memcpy(&f, p + offset[a], 4);
           q[a] = f;
         } else {

@@ -91,7 +91,7 @@ void UgvBoard::print_counters(const char* program) const {
       program, static_cast<unsigned long long>(bus_->stats().rx_frames),
       static_cast<unsigned long long>(bus_->stats().tx_frames),
       static_cast<unsigned long long>(bus_->stats().tx_failures),
-      static_cast<unsigned long long>(c.bad_checksum + c.wrong_dlc + c.unknown_id),
+      static_cast<unsigned long long>(c.bad_checksum) + c.wrong_dlc + c.unknown_id,
       static_cast<unsigned long long>(c.lost_frames),
       static_cast<unsigned long long>(task_ ? task_->health().watchdog_trips : 0));
 }

@@ -30,7 +30,7 @@ class Reader {
   }
 
   // Checks that `node` (a map or absent) has only `allowed` keys.
-  void only(const YAML::Node& node, const std::string& path, std::set<std::string> allowed) {
+  void only(const YAML::Node& node, const std::string& path, const std::set<std::string>& allowed) {
     if (!node) return;
     if (!node.IsMap()) return fail(path.empty() ? "(top level)" : path, "expected a mapping");
     for (const auto& kv : node) {

@@ -20,7 +20,8 @@ class FunctionRef<R(Args...)> {
   template <class F>
   requires(!std::is_same_v<std::remove_cvref_t<F>, FunctionRef> &&
            std::is_invocable_r_v<R, F&, Args...>)
-      FunctionRef(F&& f)  // NOLINT(google-explicit-constructor): used like a function parameter
+      // NOLINTNEXTLINE(google-explicit-constructor,bugprone-forwarding-reference-overload): used
+      FunctionRef(F&& f)  // like a function parameter; the constraint keeps copies and moves
       : object_(const_cast<void*>(static_cast<const void*>(&f))),
         call_([](void* o, Args... args) -> R {
           return (*static_cast<std::remove_reference_t<F>*>(o))(std::forward<Args>(args)...);

@@ -25,7 +25,7 @@ struct PatchCells {
   int height = 0;
   std::array<CellState, limits::kMaxPatchCells> cells{};  // row-major, width * height used
 
-  CellState at(int x, int y) const { return cells[static_cast<std::size_t>(y * width + x)]; }
+  CellState at(int x, int y) const { return cells[static_cast<std::size_t>(y) * width + x]; }
 };
 
 // Writes width, height, encoding and data of `out` (the caller sets the rest).

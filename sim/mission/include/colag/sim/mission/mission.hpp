@@ -17,7 +17,7 @@ class Mission {
  public:
   // Builds the world, the robots and the executor table (each robot's loops from its own
   // schedule table, each UGV in a lane). Null with `error` set on a bad configuration or map.
-  static std::unique_ptr<Mission> compose(const MissionConfig& config, std::string& error);
+  static std::unique_ptr<Mission> compose(const MissionConfig& cfg, std::string& error);
   ~Mission();
   Mission(const Mission&) = delete;
   Mission& operator=(const Mission&) = delete;
@@ -37,7 +37,7 @@ class Mission {
 };
 
 // check, compose, fly, collect. Fails (with a message) only on a bad configuration or map file.
-Result<MissionOutcome> run_mission(const MissionConfig& config, MissionTrace* trace = nullptr,
-                                   std::string* error = nullptr);
+Result<MissionOutcome> run_mission(const MissionConfig& cfg, MissionTrace* trace = nullptr,
+                                   std::string* error_out = nullptr);
 
 }  // namespace colag::mission

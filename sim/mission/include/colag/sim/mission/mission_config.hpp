@@ -55,7 +55,7 @@ struct MissionConfig {
 };
 
 // False with `error` naming the option when a value is out of range.
-bool check(const MissionConfig& config, std::string& error);
+bool check(const MissionConfig& cfg, std::string& error);
 
 // The paper's layout (Sec. V): UGV i starts at (x_i, 16) heading -y and drives to (x_i, -16),
 // x = 0, -2, 2, -4, 4, ...; the UAV starts at (0, 15, 1). Shared with colag_world (SITL).
@@ -63,6 +63,6 @@ Pose2 ugv_start(int i);
 Vec2 ugv_goal(int i);
 Vec3 uav_start();
 // The scenario's obstacles: generated from the seed (sparse / dense) or loaded (file).
-bool build_world(const MissionConfig& config, sim::BoxWorld& world, std::string& error);
+bool build_world(const MissionConfig& cfg, sim::BoxWorld& world, std::string& error);
 
 }  // namespace colag::mission
