@@ -5,10 +5,10 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
-#include <exception>
 #include <fstream>
 #include <tuple>
 
+#include "colag/sim/guarded_main.hpp"
 #include "colag/sim/mission/mission.hpp"
 #include "mission_png.hpp"
 
@@ -176,15 +176,6 @@ int run(int argc, char** argv) {
 
 }  // namespace
 
-// Nothing escapes as an exception: a library's (an allocation, CLI11, OpenCV) ends the program
-// with its message and exit code 2.
 int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "colag_sim: %s\n", e.what());
-  } catch (...) {
-    std::fprintf(stderr, "colag_sim: unexpected error\n");
-  }
-  return 2;
+  return colag::sim::guarded_main("colag_sim", 2, [&] { return run(argc, argv); });
 }

@@ -13,7 +13,6 @@
 // 3 a robot never appeared or went silent.
 #include <CLI/CLI.hpp>
 #include <cstdio>
-#include <exception>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -22,6 +21,7 @@
 #include "colag/platform/realtime_executor.hpp"
 #include "colag/platform/worker_pool.hpp"
 #include "colag/sim/bridge/world_bridge.hpp"
+#include "colag/sim/guarded_main.hpp"
 #include "colag/sim/mission/mission.hpp"
 #include "colag/sim/world/sim_world.hpp"
 
@@ -320,15 +320,6 @@ int run(int argc, char** argv) {
 
 }  // namespace
 
-// Nothing escapes as an exception: a library's (an allocation, CLI11, OpenCV) ends the program
-// with its message and exit code 1.
 int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "colag_world: %s\n", e.what());
-  } catch (...) {
-    std::fprintf(stderr, "colag_world: unexpected error\n");
-  }
-  return 1;
+  return colag::sim::guarded_main("colag_world", 1, [&] { return run(argc, argv); });
 }

@@ -9,12 +9,12 @@
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
-#include <exception>
 #include <memory>
 
 #include "bench_safety.hpp"
 #include "bench_speed.hpp"
 #include "bench_tables.hpp"
+#include "colag/sim/guarded_main.hpp"
 #include "tsptw_instance.hpp"
 
 using namespace colag;
@@ -103,15 +103,6 @@ int run(int argc, char** argv) {
 
 }  // namespace
 
-// Nothing escapes as an exception: a library's (an allocation, CLI11, OpenCV) ends the program
-// with its message and exit code 1.
 int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "colag_bench: %s\n", e.what());
-  } catch (...) {
-    std::fprintf(stderr, "colag_bench: unexpected error\n");
-  }
-  return 1;
+  return colag::sim::guarded_main("colag_bench", 1, [&] { return run(argc, argv); });
 }
