@@ -12,11 +12,6 @@ using namespace colag::platform::dds;
 
 namespace {
 
-template <class T>
-struct IsSequence : std::false_type {};
-template <class T, std::size_t N>
-struct IsSequence<msg::Sequence<T, N>> : std::true_type {};
-
 // Fills any message field with random values, from the field lists (msg::Fields): a new
 // message is covered without a line here.
 class Filler {
@@ -38,7 +33,7 @@ class Filler {
       v = static_cast<T>(rng_.uniform(-100.0, 100.0));
     } else if constexpr (std::is_integral_v<T>) {
       v = static_cast<T>(rng_.next_u64());
-    } else if constexpr (IsSequence<T>::value) {
+    } else if constexpr (msg::kIsSequence<T>) {
       v.count = static_cast<std::uint16_t>(rng_.below(T::kCapacity + 1));
       for (auto& e : v)
         fill(e);

@@ -20,11 +20,6 @@ namespace {
 
 using namespace colag;
 
-template <class T>
-struct IsSequence : std::false_type {};
-template <class T, std::size_t N>
-struct IsSequence<msg::Sequence<T, N>> : std::true_type {};
-
 class IdlWriter {
  public:
   // Writes T (and, first, every struct it contains) unless written already.
@@ -61,7 +56,7 @@ class IdlWriter {
   }
   template <class F>
   std::string type() {
-    if constexpr (IsSequence<F>::value) {
+    if constexpr (msg::kIsSequence<F>) {
       return "sequence<" + type<typename F::value_type>() + ", " + std::to_string(F::kCapacity) +
              ">";
     } else if constexpr (msg::HasFields<F>) {

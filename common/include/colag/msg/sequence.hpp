@@ -30,4 +30,9 @@ struct Sequence {
   friend bool operator==(const Sequence&, const Sequence&) = default;
 };
 
+template <class T>
+inline constexpr bool kIsSequence = false;
+template <class T, std::size_t N>
+inline constexpr bool kIsSequence<Sequence<T, N>> = true;
+
 }  // namespace colag::msg

@@ -19,11 +19,6 @@ namespace colag::platform::dds {
 
 namespace detail {
 
-template <class T>
-struct IsSequence : std::false_type {};
-template <class T, std::size_t N>
-struct IsSequence<msg::Sequence<T, N>> : std::true_type {};
-
 // The C element type of a generated sequence struct.
 template <class CSeq>
 using SeqElement = std::remove_pointer_t<decltype(CSeq{}._buffer)>;
@@ -38,15 +33,16 @@ struct Scratch<msg::Sequence<T, N>, C> {
   std::array<SeqElement<C>, N> items{};
 };
 
+// The type of field I of S, a struct with the fields of Msg (Msg itself, or its C mirror).
+template <class Msg, class S, std::size_t I>
+using FieldType = std::remove_cvref_t<
+    std::tuple_element_t<I, decltype(msg::Fields<Msg>::tie(std::declval<S&>()))>>;
+
 template <class Msg, class C, class Seq>
 struct ScratchTuple;
 template <class Msg, class C, std::size_t... I>
 struct ScratchTuple<Msg, C, std::index_sequence<I...>> {
-  using Type =
-      std::tuple<Scratch<std::remove_cvref_t<std::tuple_element_t<I, decltype(msg::Fields<Msg>::tie(
-                                                                         std::declval<Msg&>()))>>,
-                         std::remove_cvref_t<std::tuple_element_t<
-                             I, decltype(msg::Fields<Msg>::tie(std::declval<C&>()))>>>...>;
+  using Type = std::tuple<Scratch<FieldType<Msg, Msg, I>, FieldType<Msg, C, I>>...>;
 };
 
 }  // namespace detail
@@ -88,7 +84,7 @@ void put_fields(const F& a, C& b, S* scratch = nullptr) {
 
 template <class F, class C, class S, std::size_t I>
 void put_field(const F& a, C& b, S* scratch, std::integral_constant<std::size_t, I>) {
-  if constexpr (IsSequence<F>::value) {
+  if constexpr (msg::kIsSequence<F>) {
     using T = typename F::value_type;
     const std::uint32_t n = a.count < F::kCapacity ? a.count : F::kCapacity;
     b._maximum = static_cast<std::uint32_t>(F::kCapacity);
@@ -137,7 +133,7 @@ Status take(const C& b, F& a) {
     if (b > static_cast<U>(msg::EnumRange<F>::kLast))
       return {Errc::kInvalidArgument, "DDS sample: an enum value past its last"};
     a = static_cast<F>(b);
-  } else if constexpr (IsSequence<F>::value) {
+  } else if constexpr (msg::kIsSequence<F>) {
     using T = typename F::value_type;
     if (b._length > F::kCapacity || (b._length > 0 && b._buffer == nullptr))
       return {Errc::kInvalidArgument, "DDS sample: a sequence longer than its bound"};
