@@ -27,20 +27,19 @@ std::string relative_to(const std::string& config_file, const std::string& path)
 
 void read_common(Reader& r, const YAML::Node& doc, const std::vector<std::string>& robot_sections,
                  CommonBoardConfig& out) {
-  CommonBoardConfig& c = out;
   std::set<std::string> sections(robot_sections.begin(), robot_sections.end());
   sections.insert({"dds", "realtime"});
   r.only(doc, "", sections);
   const YAML::Node dds = child(doc, "dds");
   r.only(dds, "dds", {"domain", "partition", "security"});
-  r.get(dds, "dds", "domain", c.dds_domain, 0u, 232u);  // DDS allows domain ids 0..232
-  r.get(dds, "dds", "partition", c.dds_partition);
+  r.get(dds, "dds", "domain", out.dds_domain, 0u, 232u);  // DDS allows domain ids 0..232
+  r.get(dds, "dds", "partition", out.dds_partition);
   // dds.security: the files scripts/security/make-pki writes for this robot.
   const YAML::Node sec = child(dds, "security");
   r.only(sec, "dds.security",
          {"identity_ca", "certificate", "private_key", "permissions_ca", "governance",
           "permissions", "plugin_dir"});
-  platform::DdsSecurityConfig& s = c.dds_security;
+  platform::DdsSecurityConfig& s = out.dds_security;
   const std::pair<const char*, std::string*> files[] = {
       {"identity_ca", &s.identity_ca}, {"certificate", &s.certificate},
       {"private_key", &s.private_key}, {"permissions_ca", &s.permissions_ca},
@@ -58,8 +57,8 @@ void read_common(Reader& r, const YAML::Node& doc, const std::vector<std::string
   }
   const YAML::Node rt = child(doc, "realtime");
   r.only(rt, "realtime", {"fifo_priority", "lock_memory"});
-  r.get(rt, "realtime", "fifo_priority", c.realtime.fifo_priority, 0, 99);
-  r.get(rt, "realtime", "lock_memory", c.realtime.lock_memory);
+  r.get(rt, "realtime", "fifo_priority", out.realtime.fifo_priority, 0, 99);
+  r.get(rt, "realtime", "lock_memory", out.realtime.lock_memory);
 }
 
 }  // namespace colag::board
