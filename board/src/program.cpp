@@ -52,9 +52,17 @@ void stop_on_signals(platform::RealtimeExecutor& exec) {
   sigaction(SIGTERM, &sa, nullptr);
 }
 
+std::string describe_realtime_setup(const platform::RealtimeSetup& setup) {
+  const auto state = [](bool requested, const Status& s) -> std::string {
+    if (!requested) return "off (not requested)";
+    return s ? "on" : s.message();
+  };
+  return "SCHED_FIFO " + state(setup.fifo_requested, setup.fifo) + ", mlockall " +
+         state(setup.memory_lock_requested, setup.memory_lock);
+}
+
 void print_realtime_setup(const char* program, const platform::RealtimeSetup& setup) {
-  std::printf("%s: SCHED_FIFO %s, mlockall %s\n", program, setup.fifo ? "on" : setup.fifo.message(),
-              setup.memory_lock ? "on" : setup.memory_lock.message());
+  std::printf("%s: %s\n", program, describe_realtime_setup(setup).c_str());
 }
 
 void print_task_stats(const char* program, const platform::Schedule& schedule) {

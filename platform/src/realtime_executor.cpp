@@ -27,15 +27,17 @@ void sleep_until(std::int64_t ns) {
 
 RealtimeSetup RealtimeExecutor::apply(const RealtimeOptions& options) {
   RealtimeSetup out;
-  if (options.fifo_priority > 0) {
+  out.fifo_requested = options.fifo_priority > 0;
+  out.memory_lock_requested = options.lock_memory;
+  if (out.fifo_requested) {
     sched_param sp{};
     sp.sched_priority = options.fifo_priority;
     if (sched_setscheduler(0, SCHED_FIFO, &sp) != 0) {
-      out.fifo = errno_status(errno, "SCHED_FIFO refused");
+      out.fifo = errno_status(errno, "refused (needs CAP_SYS_NICE or RLIMIT_RTPRIO)");
     }
   }
   if (options.lock_memory && mlockall(MCL_CURRENT | MCL_FUTURE) != 0) {
-    out.memory_lock = errno_status(errno, "mlockall refused");
+    out.memory_lock = errno_status(errno, "refused (needs CAP_IPC_LOCK or RLIMIT_MEMLOCK)");
   }
   return out;
 }

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "colag/board/program.hpp"
 #include "colag/uav/app/uav_config.hpp"
 #include "colag/ugv/app/ugv_config.hpp"
 
@@ -177,6 +178,24 @@ camera:
   EXPECT_FALSE(load_uav_config(
       write("u4.yaml", "camera: {calibration: cam.yaml, tags: [{tag: 700, ugv: 1}]}"), c, error));
   EXPECT_NE(error.find("camera.tags[0].tag: out of range"), std::string::npos) << error;
+}
+
+}  // namespace
+}  // namespace colag::board
+
+namespace colag::board {
+namespace {
+
+// What the programs print about SCHED_FIFO and mlockall says what was asked for and granted.
+TEST(RealtimeReport, SaysWhatWasRequestedAndWhatWasGranted) {
+  platform::RealtimeSetup none;
+  EXPECT_EQ(describe_realtime_setup(none),
+            "SCHED_FIFO off (not requested), mlockall off (not requested)");
+  platform::RealtimeSetup both;
+  both.fifo_requested = both.memory_lock_requested = true;
+  both.memory_lock = {Errc::kPermissionDenied, "refused (needs CAP_IPC_LOCK or RLIMIT_MEMLOCK)"};
+  EXPECT_EQ(describe_realtime_setup(both),
+            "SCHED_FIFO on, mlockall refused (needs CAP_IPC_LOCK or RLIMIT_MEMLOCK)");
 }
 
 }  // namespace

@@ -135,8 +135,8 @@ TEST(RealtimeExecutor, StopsOnRequestFromAnotherThread) {
 TEST(RealtimeExecutor, RealtimeRequestsSucceedOrReportPermission) {
   RealtimeExecutor ex;
   const RealtimeSetup none = ex.apply({});
-  EXPECT_TRUE(none.fifo);
-  EXPECT_TRUE(none.memory_lock);
+  EXPECT_FALSE(none.fifo_requested);
+  EXPECT_FALSE(none.memory_lock_requested);
 
   const RealtimeSetup rt = ex.apply({10, true});
   EXPECT_TRUE(rt.fifo || rt.fifo.code() == Errc::kPermissionDenied) << rt.fifo.message();

@@ -58,6 +58,8 @@ int run_program(int argc, char** argv, const Program<Config>& program) {
 // in order (motors to zero first) instead of dying mid-command.
 void stop_on_signals(platform::RealtimeExecutor& exec);
 
+// "SCHED_FIFO on, mlockall off (not requested)": what was asked for and what was granted.
+std::string describe_realtime_setup(const platform::RealtimeSetup& setup);
 void print_realtime_setup(const char* program, const platform::RealtimeSetup& setup);
 void print_task_stats(const char* program, const platform::Schedule& schedule);
 

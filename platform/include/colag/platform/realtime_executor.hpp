@@ -18,8 +18,10 @@ struct RealtimeOptions {
 // The outcome of each request in RealtimeOptions; kPermissionDenied is normal without
 // CAP_SYS_NICE / CAP_IPC_LOCK and leaves the executor running without it.
 struct RealtimeSetup {
-  Status fifo;
-  Status memory_lock;
+  bool fifo_requested = false;
+  bool memory_lock_requested = false;
+  Status fifo;         // ok: granted, or not requested
+  Status memory_lock;  // ok: granted, or not requested
 };
 
 class RealtimeExecutor {
