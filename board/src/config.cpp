@@ -1,11 +1,19 @@
 #include "colag/board/config.hpp"
 
+#include <filesystem>
+#include <fstream>
 #include <utility>
 
 namespace colag::board {
 
 bool load_document(const std::string& name, const std::string* text, YAML::Node& doc,
                    std::string& error) {
+  std::error_code ec;
+  if (text == nullptr && std::filesystem::exists(name, ec) &&
+      !std::filesystem::is_regular_file(name, ec)) {
+    error = name + ": not a file";
+    return false;
+  }
   try {
     doc = text != nullptr ? YAML::Load(*text) : YAML::LoadFile(name);
   } catch (const YAML::BadFile&) {
@@ -13,6 +21,9 @@ bool load_document(const std::string& name, const std::string* text, YAML::Node&
     return false;
   } catch (const YAML::Exception& e) {
     error = name + ": line " + std::to_string(e.mark.line + 1) + ": " + e.msg;
+    return false;
+  } catch (const std::exception& e) {  // an I/O error under yaml-cpp (a device, a FIFO)
+    error = name + ": cannot read the configuration file (" + e.what() + ")";
     return false;
   }
   if (doc.IsNull()) doc = YAML::Node(YAML::NodeType::Map);  // an empty file: all defaults
@@ -54,6 +65,9 @@ void read_common(Reader& r, const YAML::Node& doc, const std::vector<std::string
     for (const auto& [key, value] : files)
       if (value->empty())
         r.fail(std::string("dds.security.") + key, "required when security is on");
+    for (const auto& [key, value] : files)  // --check-config must catch a wrong path
+      if (r.ok() && !std::ifstream(*value))
+        r.fail(std::string("dds.security.") + key, "cannot read " + *value);
   }
   const YAML::Node rt = child(doc, "realtime");
   r.only(rt, "realtime", {"fifo_priority", "lock_memory"});

@@ -78,13 +78,20 @@ odometry: {timeout_ms: 80, sigma_v: 0.05, sigma_omega: 0.04}
 TEST_F(BoardConfig, DdsSecurityFilesAreRelativeToTheConfigAndAllRequired) {
   UgvBoardConfig c;
   std::string error;
+  for (const char* f : {"pki/ca.pem", "pki/ugv1/identity.pem", "pki/ugv1/key.pem",
+                        "pki/governance.p7s", "pki/ugv1/permissions.p7s", "abs/ca.pem"}) {
+    std::filesystem::create_directories((dir_ / f).parent_path());
+    write(f, "x");
+  }
+  const std::string absolute_ca = (dir_ / "abs/ca.pem").string();
   ASSERT_TRUE(load_ugv_config(write("secure.yaml", R"(
+robot: {id: 1, goal: [0.0, -16.0]}
 dds:
   security:
     identity_ca: pki/ca.pem
     certificate: pki/ugv1/identity.pem
     private_key: pki/ugv1/key.pem
-    permissions_ca: /etc/colag/pki/ca.pem
+    permissions_ca: )" + absolute_ca + R"(
     governance: pki/governance.p7s
     permissions: pki/ugv1/permissions.p7s
 )"),
@@ -92,21 +99,48 @@ dds:
       << error;
   EXPECT_TRUE(c.common.dds_security.enabled());
   EXPECT_EQ(c.common.dds_security.identity_ca, (dir_ / "pki/ca.pem").string());
-  EXPECT_EQ(c.common.dds_security.permissions_ca, "/etc/colag/pki/ca.pem");
+  EXPECT_EQ(c.common.dds_security.permissions_ca, absolute_ca);
   EXPECT_EQ(c.common.dds_security.permissions, (dir_ / "pki/ugv1/permissions.p7s").string());
   EXPECT_NE(ugv_error("dds: {security: {identity_ca: ca.pem}}")
                 .find("dds.security.certificate: required when security is on"),
             std::string::npos);
   EXPECT_NE(ugv_error("dds: {security: {cert: a.pem}}").find("dds.security.cert: unknown key"),
             std::string::npos);
-  EXPECT_TRUE(load_ugv_config(write("plain.yaml", "dds: {domain: 3}"), c, error)) << error;
+  // --check-config must catch a file that is not there.
+  EXPECT_NE(ugv_error(R"(
+robot: {id: 1, goal: [0.0, -16.0]}
+dds:
+  security:
+    identity_ca: pki/ca.pem
+    certificate: pki/ugv1/nothere.pem
+    private_key: pki/ugv1/key.pem
+    permissions_ca: pki/ca.pem
+    governance: pki/governance.p7s
+    permissions: pki/ugv1/permissions.p7s
+)")
+                .find("dds.security.certificate: cannot read"),
+            std::string::npos);
+  EXPECT_TRUE(load_ugv_config(
+      write("plain.yaml", "robot: {id: 1, goal: [0.0, -16.0]}\ndds: {domain: 3}"), c, error))
+      << error;
   EXPECT_FALSE(c.common.dds_security.enabled());
 }
 
-TEST_F(BoardConfig, EmptyFileMeansDefaults) {
+TEST_F(BoardConfig, OnlyWhatTheOperatorMustSayIsRequired) {
+  // An empty file would drive UGV 1 to (0, 0): which robot and where to go have no default.
+  EXPECT_NE(ugv_error("").find("robot.id: required"), std::string::npos);
+  EXPECT_NE(ugv_error("robot: {id: 2}").find("robot.goal: required"), std::string::npos);
+  EXPECT_NE(ugv_error("robot: {goal: [0, -16]}").find("robot.id: required"), std::string::npos);
+  UavBoardConfig uav;
+  std::string uav_error;
+  EXPECT_FALSE(load_uav_config(write("uav_empty.yaml", "robot: {hal: sim}"), uav, uav_error));
+  EXPECT_NE(uav_error.find("robot.id: required"), std::string::npos) << uav_error;
+  // Everything else has its documented default.
   UgvBoardConfig c;
   std::string error;
-  ASSERT_TRUE(load_ugv_config(write("empty.yaml", ""), c, error)) << error;
+  ASSERT_TRUE(
+      load_ugv_config(write("minimal.yaml", "robot: {id: 4, goal: [6.0, -16.0]}"), c, error))
+      << error;
   EXPECT_EQ(c.can_interface, "can0");
   EXPECT_EQ(c.nav.schedule.control.period, std::chrono::milliseconds(20));
   EXPECT_EQ(c.nav.odometry_timeout, std::chrono::milliseconds(60));
@@ -133,10 +167,26 @@ TEST_F(BoardConfig, ErrorsNameTheKeyAndTheProblem) {
   // Found by fuzz_yaml_config: these threw out of the reader instead of naming the problem.
   EXPECT_NE(ugv_error("rates:\n  control").find("rates: expected a mapping"), std::string::npos);
   EXPECT_NE(ugv_error("? [a, b]\n: 1").find("(top level): a key is not a name"), std::string::npos);
+  // Found trying it as a new user: zero odometry noise (the estimate never grows uncertain),
+  // a key given twice (YAML reads the first), a directory instead of a file (it aborted).
+  EXPECT_NE(ugv_error("odometry: {sigma_v: 0}").find("odometry.sigma_v: out of range"),
+            std::string::npos);
+  EXPECT_NE(ugv_error("odometry: {sigma_omega: 0.0}").find("odometry.sigma_omega: out of range"),
+            std::string::npos);
+  EXPECT_NE(ugv_error("robot: {id: 1, goal: [0, -16]}\nrobot: {id: 2, goal: [2, -16]}")
+                .find("robot: given twice"),
+            std::string::npos);
+  EXPECT_NE(ugv_error("robot: {id: 1, id: 3, goal: [0, -16]}").find("robot.id: given twice"),
+            std::string::npos);
   UgvBoardConfig c;
   std::string error;
   EXPECT_FALSE(load_ugv_config((dir_ / "none.yaml").string(), c, error));
   EXPECT_NE(error.find("cannot open"), std::string::npos);
+  EXPECT_FALSE(load_ugv_config(dir_.string(), c, error));
+  EXPECT_NE(error.find("not a file"), std::string::npos) << error;
+  UavBoardConfig uav;
+  EXPECT_FALSE(load_uav_config(dir_.string(), uav, error));
+  EXPECT_NE(error.find("not a file"), std::string::npos) << error;
 }
 
 TEST_F(BoardConfig, UavConfigWithCalibrationAndTags) {

@@ -77,6 +77,7 @@ void read_uav_sections(board::Reader& r, const YAML::Node& doc, UavBoardConfig& 
       r.fail("camera.calibration", cal_error);
     c.calibration_file = file;
   }
+  r.require(robot, "robot", "id");  // checked last: a wrong value elsewhere is reported first
 }
 
 const board::ConfigSchema<UavBoardConfig> kSchema{{"robot", "camera"}, read_uav_sections};

@@ -60,8 +60,13 @@ void read_ugv_sections(board::Reader& r, const YAML::Node& doc, UgvBoardConfig& 
   const YAML::Node odo = child(doc, "odometry");
   r.only(odo, "odometry", {"timeout_ms", "sigma_v", "sigma_omega"});
   r.millis(odo, "odometry", "timeout_ms", c.nav.odometry_timeout, 10.0, 1000.0);
-  r.get(odo, "odometry", "sigma_v", c.nav.ekf.noise.sigma_v_mps, 0.0, 1.0);
-  r.get(odo, "odometry", "sigma_omega", c.nav.ekf.noise.sigma_omega_radps, 0.0, 1.0);
+  // Zero would stop the estimate's uncertainty from growing: never true of wheels.
+  r.get(odo, "odometry", "sigma_v", c.nav.ekf.noise.sigma_v_mps, 1e-4, 1.0);
+  r.get(odo, "odometry", "sigma_omega", c.nav.ekf.noise.sigma_omega_radps, 1e-4, 1.0);
+
+  // Checked last, so that a wrong value elsewhere is the error reported first.
+  r.require(robot, "robot", "id");
+  r.require(robot, "robot", "goal");
 }
 
 const board::ConfigSchema<UgvBoardConfig> kSchema{{"robot", "can", "wheels", "rates", "odometry"},

@@ -33,12 +33,20 @@ class Reader {
   void only(const YAML::Node& node, const std::string& path, const std::set<std::string>& allowed) {
     if (!node) return;
     if (!node.IsMap()) return fail(path.empty() ? "(top level)" : path, "expected a mapping");
+    std::set<std::string> seen;
     for (const auto& kv : node) {
       if (!kv.first.IsScalar())
         return fail(path.empty() ? "(top level)" : path, "a key is not a name");
       const std::string key = kv.first.as<std::string>();
       if (allowed.count(key) == 0) fail(join(path, key), "unknown key");
+      // YAML keeps both of a duplicated key and reads the first: a silent surprise on a robot.
+      if (!seen.insert(key).second) fail(join(path, key), "given twice");
     }
+  }
+
+  // A key without a default (what only the operator can know: which robot this is, its goal).
+  void require(const YAML::Node& node, const std::string& path, const char* key) {
+    if (!child(node, key)) fail(join(path, key), "required (no default)");
   }
 
   template <class T>
