@@ -1,6 +1,10 @@
 // colag_sim: one simulated ColAG mission on the host (the real firmware tasks against the
 // simulated world, faster than real time), printing the paper's metrics, optionally writing
 // them as JSON and drawing the mission as a PNG.
+//
+// Exit codes: 0 every UGV reached its goal and nothing collided; 1 a collision, or a UGV short
+// of its goal (the table and the JSON say where and why); 2 a usage or input error (options, map
+// file, an output that cannot be written).
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -39,6 +43,9 @@ void print_table(const mission::MissionOutcome& o) {
   std::printf("  UAV traj. length    %8.2f m\n", o.uav_traj_length_m);
   std::printf("  collisions          %8d\n", o.collisions);
   std::printf("  all reached         %8s\n", o.all_reached ? "yes" : "NO");
+  for (const auto& u : o.ugvs) {
+    if (!u.reached || u.collided) std::printf("  UGV %-2d              %s\n", u.id, u.end.c_str());
+  }
   if (o.map_patches > 0) {
     std::printf("  map patches         %8llu (%.1f B payload each)\n",
                 static_cast<unsigned long long>(o.map_patches),
@@ -96,7 +103,10 @@ int run(int argc, char** argv) {
   app.add_flag("--quiet", quiet, "no progress bar, no table");
   app.add_flag("--verbose", verbose,
                "also list every stop of every UGV and the host time of each task");
-  CLI11_PARSE(app, argc, argv);
+  app.footer(
+      "Exit codes: 0 every UGV reached its goal and nothing collided; 1 a collision or a UGV\n"
+      "short of its goal; 2 a usage or input error.");
+  if (const auto code = sim::parse_command_line(app, argc, argv)) return *code;
   if (!map_file.empty()) {
     cfg.scenario = "file";
     cfg.map_file = map_file;
@@ -110,6 +120,21 @@ int run(int argc, char** argv) {
     if (!text.empty() && !mission::parse_window(text, *window)) {
       std::fprintf(stderr, "colag_sim: %s: expected T0:T1 in seconds with 0 <= T0 < T1, got '%s'\n",
                    name, text.c_str());
+      return 2;
+    }
+  }
+
+  // Outputs that cannot be written fail now, not after the mission.
+  if (!json_path.empty() && !std::ofstream(json_path)) {
+    std::fprintf(stderr, "colag_sim: --json %s: cannot write there\n", json_path.c_str());
+    return 2;
+  }
+  if (!png_path.empty()) {
+    const bool png =
+        png_path.size() > 4 && (png_path.ends_with(".png") || png_path.ends_with(".PNG"));
+    if (!png || !std::ofstream(png_path)) {
+      std::fprintf(stderr, "colag_sim: --png %s: %s\n", png_path.c_str(),
+                   png ? "cannot write there" : "the file name must end in .png");
       return 2;
     }
   }
@@ -161,7 +186,12 @@ int run(int argc, char** argv) {
     }
   }
   if (!json_path.empty()) {
-    std::ofstream(json_path) << mission::to_json(o) << "\n";
+    std::ofstream json(json_path);
+    json << mission::to_json(o) << "\n";
+    if (!json.flush()) {
+      std::fprintf(stderr, "colag_sim: --json %s: cannot write there\n", json_path.c_str());
+      return 2;
+    }
     if (!quiet) std::printf("  metrics: %s\n", json_path.c_str());
   }
   if (!png_path.empty()) {
@@ -171,7 +201,7 @@ int run(int argc, char** argv) {
     }
     if (!quiet) std::printf("  picture: %s\n", png_path.c_str());
   }
-  return 0;
+  return mission::exit_code(o);
 }
 
 }  // namespace

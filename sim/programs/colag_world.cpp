@@ -207,8 +207,12 @@ int run(int argc, char** argv) {
                  "simulated seconds per second (the robots need the same --time-scale)")
       ->check(CLI::Range(0.1, 20.0));
   app.add_flag("--quiet", quiet, "only errors");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto code = sim::parse_command_line(app, argc, argv)) return *code;
   if (!cfg.map_file.empty()) cfg.scenario = "file";
+  if (!json_path.empty() && !std::ofstream(json_path)) {  // fail now, not after the mission
+    std::fprintf(stderr, "colag_world: --json %s: cannot write there\n", json_path.c_str());
+    return 2;
+  }
 
   sim::BoxWorld boxes;
   std::string error;
@@ -288,6 +292,7 @@ int run(int argc, char** argv) {
     o.reached = monitor.reached_[k];
     o.reach_time_s = o.reached ? monitor.reach_s_[k] : -1.0;
     o.waiting_time_s = traffic.status[k].waiting_time_s;
+    o.final_mode = traffic.status[k].mode;
     o.support_requests = traffic.requests[k];
     reached += o.reached ? 1 : 0;
     out.ugvs.push_back(o);
@@ -298,7 +303,12 @@ int run(int argc, char** argv) {
   out.map_patch_bytes = traffic.patch_bytes;
   const std::string json = mission::to_json(out);
   if (!json_path.empty()) {
-    std::ofstream(json_path) << json << "\n";
+    std::ofstream out_file(json_path);
+    out_file << json << "\n";
+    if (!out_file.flush()) {
+      std::fprintf(stderr, "colag_world: --json %s: cannot write there\n", json_path.c_str());
+      return 2;
+    }
   }
   const auto& b = bridge.counters();
   if (!quiet) {

@@ -24,7 +24,10 @@ void expect_all_reached_safely(const MissionOutcome& o) {
     EXPECT_FALSE(u.collided) << "UGV " << u.id;
     EXPECT_GT(u.min_clearance_m, 0.0) << "UGV " << u.id;
     EXPECT_GT(u.traj_length_m, 31.9) << "UGV " << u.id;  // it really crossed (32 m start to goal)
+    EXPECT_LE(u.goal_distance_m, 0.5) << "UGV " << u.id;
+    EXPECT_EQ(u.end, "reached its goal") << "UGV " << u.id;
   }
+  EXPECT_EQ(exit_code(o), 0);
 }
 
 }  // namespace
@@ -160,4 +163,19 @@ TEST(Mission, RejectsABadConfiguration) {
   cfg.map_file = "/nonexistent.pcd";
   EXPECT_FALSE(run_mission(cfg, nullptr, &error));
   EXPECT_NE(error.find("cannot open"), std::string::npos);
+}
+
+// A mission cut short says, for each UGV, how far from its goal it ended and what it was doing;
+// colag_sim's exit code is then 1.
+TEST(Mission, AUgvShortOfItsGoalSaysWhereAndWhy) {
+  MissionConfig cfg;
+  cfg.scenario = "sparse";
+  cfg.ugvs = 1;
+  cfg.max_time_s = 10;
+  const MissionOutcome o = run(cfg);
+  ASSERT_EQ(o.ugvs.size(), 1u);
+  EXPECT_FALSE(o.ugvs[0].reached);
+  EXPECT_GT(o.ugvs[0].goal_distance_m, 20.0);
+  EXPECT_NE(o.ugvs[0].end.find("when the mission ended"), std::string::npos) << o.ugvs[0].end;
+  EXPECT_EQ(exit_code(o), 1);
 }

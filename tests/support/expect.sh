@@ -13,7 +13,8 @@ if [ "$rc" -ne "$code" ]; then
   echo "expect.sh: exit code $rc, expected $code" >&2
   exit 1
 fi
-if ! grep -Eq -- "$pattern" <<<"$out"; then
+# The whole output as one text: `.` also matches a line break, as in CTest's expressions.
+if ! [[ "$out" =~ $pattern ]]; then
   echo "expect.sh: the output does not match: $pattern" >&2
   exit 1
 fi

@@ -93,7 +93,7 @@ int run(int argc, char** argv) {
   speed->add_option("--sim", popt.sim, "colag_sim to run (default: next to colag_bench)");
   speed->add_option("--baseline", popt.baseline,
                     "another colag_sim to alternate with, run for run (A/B comparison)");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto code = sim::parse_command_line(app, argc, argv)) return *code;
   if (*sched) return run_scheduler(instance, exact_max);
   if (*tables) return programs::run_tables(topt);
   if (*safety) return programs::run_safety(sopt);

@@ -89,7 +89,10 @@ bool run_missions(std::vector<MissionRun>& runs, const std::string& sim, int job
     ++done;
     for (MissionRun& r : runs) {
       if (r.pid != pid) continue;
-      r.ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
+      // colag_sim exits 1 when the mission ran but a UGV collided or fell short: that is a
+      // result to count; 2 (an input error), another code or a signal is a mission that did not
+      // run.
+      r.ok = WIFEXITED(status) && (WEXITSTATUS(status) == 0 || WEXITSTATUS(status) == 1);
       if (r.ok) {
         std::ifstream in(r.json_path);
         r.result = nlohmann::json::parse(in, nullptr, false);

@@ -23,7 +23,7 @@ struct MissionRun {
   int seed = 0;
   std::string json_path;
   pid_t pid = 0;
-  bool ok = false;
+  bool ok = false;  // it ran (whatever its outcome) and wrote its JSON
   nlohmann::json result;
 };
 

@@ -320,6 +320,7 @@ void Mission::fly(MissionTrace* trace) {
       UgvOutcome& o = p.outcomes[i];
       const sim::UgvBody& body = p.world->ugv(static_cast<int>(i));
       if (task.mode() == msg::UgvMode::kWaitingForInit) o.init_wait_s += 0.1;
+      o.final_mode = task.mode();
       if (trace != nullptr) {
         const bool stopped = task.mode() == msg::UgvMode::kWaitingForSupport ||
                              task.mode() == msg::UgvMode::kWaitingForInit;

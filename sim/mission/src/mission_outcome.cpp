@@ -1,11 +1,51 @@
 #include "colag/sim/mission/mission_outcome.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <nlohmann/json.hpp>
 
 #include "colag/sim/world/sim_world.hpp"
 
 namespace colag::mission {
+
+namespace {
+
+const char* doing(msg::UgvMode m) {
+  switch (m) {
+    case msg::UgvMode::kWaitingForInit:
+      return "still waiting for its first relative pose";
+    case msg::UgvMode::kDriving:
+      return "still driving";
+    case msg::UgvMode::kWaitingForSupport:
+      return "waiting for support";
+    case msg::UgvMode::kArrived:
+      return "arrived";
+    case msg::UgvMode::kNoPath:
+      return "finding no path to its goal";
+    case msg::UgvMode::kFault:
+      return "in a fault (motors stopped)";
+  }
+  return "in an unknown mode";
+}
+
+std::string end_of(const UgvOutcome& o) {
+  char text[160];
+  if (o.collided) {
+    std::snprintf(text, sizeof text, "collided; %.2f m from its goal", o.goal_distance_m);
+  } else if (o.reached) {
+    std::snprintf(text, sizeof text, "reached its goal");
+  } else if (o.final_mode == msg::UgvMode::kArrived) {
+    std::snprintf(text, sizeof text,
+                  "stopped %.2f m from its goal, believing it had arrived (its estimate was off)",
+                  o.goal_distance_m);
+  } else {
+    std::snprintf(text, sizeof text, "%s when the mission ended, %.2f m from its goal",
+                  doing(o.final_mode), o.goal_distance_m);
+  }
+  return text;
+}
+
+}  // namespace
 
 void summarise(const sim::SimWorld& world, MissionOutcome& out) {
   double reach_sum = 0.0;
@@ -14,6 +54,7 @@ void summarise(const sim::SimWorld& world, MissionOutcome& out) {
   for (UgvOutcome& o : out.ugvs) {
     o.traj_length_m = world.ugv(o.id).travelled_m();
     o.min_clearance_m = world.min_clearance_m(o.id);
+    o.goal_distance_m = (world.ugv(o.id).pose().p - ugv_goal(o.id)).norm();
     for (const auto& c : world.collisions())
       o.collided = o.collided || c.ugv == o.id || c.other_ugv == o.id;
     if (o.reached) {
@@ -23,6 +64,7 @@ void summarise(const sim::SimWorld& world, MissionOutcome& out) {
     out.waiting_time_s += o.waiting_time_s / n;
     out.max_waiting_time_s = std::max(out.max_waiting_time_s, o.waiting_time_s);
     out.ugv_traj_length_m += o.traj_length_m / n;
+    o.end = end_of(o);
   }
   out.reach_time_s = reached > 0 ? reach_sum / reached : -1.0;
   out.all_reached = reached == static_cast<int>(out.ugvs.size());
@@ -57,6 +99,8 @@ std::string to_json(const MissionOutcome& o, bool include_wall_time) {
     ju["traj_length_m"] = u.traj_length_m;
     ju["min_clearance_m"] = u.min_clearance_m;
     ju["support_requests"] = u.support_requests;
+    ju["goal_distance_m"] = u.goal_distance_m;
+    ju["end"] = u.end;
     ugvs.push_back(ju);
   }
   j["ugvs"] = ugvs;

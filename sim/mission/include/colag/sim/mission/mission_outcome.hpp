@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "colag/msg/ugv_status.hpp"
 #include "colag/sim/mission/mission_config.hpp"
 
 namespace colag::sim {
@@ -23,6 +24,9 @@ struct UgvOutcome {
   double traj_length_m = 0.0;
   double min_clearance_m = 0.0;  // closest approach of its footprint to an obstacle or UGV
   std::uint64_t support_requests = 0;
+  msg::UgvMode final_mode = msg::UgvMode::kWaitingForInit;  // what it reported last
+  double goal_distance_m = 0.0;  // where it ended, from its goal (true position)
+  std::string end;               // how it ended, in words (summarise)
 };
 
 // Host CPU time of one kind of task over the mission (summed over the robots that run it).
@@ -85,11 +89,18 @@ struct MissionTrace {
   std::vector<Vec2> unknown_cells;  // ground cells the UAV never saw (0.1 m), at the end
 };
 
-// Completes an outcome whose UGVs have their id, reached, reach time, waiting time and support
-// requests set: the ground truth from `world` (path length, clearance, collisions) and the
-// paper's averages. Shared by colag_sim's missions and colag_world (SITL).
+// Completes an outcome whose UGVs have their id, reached, reach time, waiting time, support
+// requests and final mode set: the ground truth from `world` (path length, clearance,
+// collisions, distance to the goal), how each UGV ended, and the paper's averages. Shared by
+// colag_sim's missions and colag_world (SITL).
 void summarise(const sim::SimWorld& world, MissionOutcome& out);
 
 std::string to_json(const MissionOutcome& outcome, bool include_wall_time = true);
+
+// Exit code of a program that flew a mission: 0 every UGV reached its goal and nothing collided,
+// 1 otherwise.
+inline int exit_code(const MissionOutcome& o) {
+  return o.all_reached && o.collisions == 0 ? 0 : 1;
+}
 
 }  // namespace colag::mission
