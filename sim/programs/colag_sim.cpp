@@ -12,9 +12,9 @@
 #include <fstream>
 #include <tuple>
 
-#include "colag/sim/guarded_main.hpp"
+#include "colag/sim/host_program.hpp"
 #include "colag/sim/mission/mission.hpp"
-#include "mission_png.hpp"
+#include "colag/sim/mission_png.hpp"
 
 using namespace colag;
 
@@ -67,7 +67,8 @@ int run(int argc, char** argv) {
       ->excludes(scenario)
       ->check(CLI::ExistingFile);
   app.add_option("--ugvs", cfg.ugvs, "number of UGVs")->check(CLI::Range(1, 16));
-  app.add_option("--seed", cfg.seed, "seed of the map, the noise and the network");
+  app.add_option("--seed", cfg.seed, "seed of the map, the noise and the network")
+      ->check(sim::kSeed);
   app.add_option("--ablation", ablation,
                  "none, no-rpe, no-uncertainty, no-scheduling, no-time-windows")
       ->check(
@@ -75,7 +76,7 @@ int run(int argc, char** argv) {
   app.add_flag("--self-perception", cfg.self_perception,
                "baseline: every UGV has its own LiDAR and true pose, no UAV");
   app.add_option("--max-time", cfg.max_time_s, "simulated seconds before giving up")
-      ->check(CLI::PositiveNumber);
+      ->check(sim::positive_up_to(1e6));
   app.add_option("--lidar-columns", cfg.lidar_columns, "LiDAR columns per turn (1200 = 0.3 deg)")
       ->check(CLI::Range(60, 1200));
   app.add_option("--predict-horizon", cfg.predict_horizon_m,

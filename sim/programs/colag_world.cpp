@@ -21,7 +21,7 @@
 #include "colag/platform/realtime_executor.hpp"
 #include "colag/platform/worker_pool.hpp"
 #include "colag/sim/bridge/world_bridge.hpp"
-#include "colag/sim/guarded_main.hpp"
+#include "colag/sim/host_program.hpp"
 #include "colag/sim/mission/mission.hpp"
 #include "colag/sim/world/sim_world.hpp"
 
@@ -194,12 +194,13 @@ int run(int argc, char** argv) {
   app.add_option("--map", cfg.map_file, "a PCD map instead of a generated scenario");
   app.add_option("--ugvs", cfg.ugvs, "number of UGVs")
       ->check(CLI::Range(1, static_cast<int>(limits::kMaxUgvs)));
-  app.add_option("--seed", cfg.seed, "map seed");
+  app.add_option("--seed", cfg.seed, "map seed")->check(sim::kSeed);
   app.add_option("--domain", domain, "the robots' DDS domain (the sim link uses domain + 1)")
       ->check(CLI::Range(0, 231));
-  app.add_option("--max-time", cfg.max_time_s, "mission time limit, s")->check(CLI::PositiveNumber);
+  app.add_option("--max-time", cfg.max_time_s, "mission time limit, s")
+      ->check(sim::positive_up_to(1e6));
   app.add_option("--start-timeout", start_timeout_s, "how long to wait for the robots, s")
-      ->check(CLI::PositiveNumber);
+      ->check(sim::positive_up_to(1e6));
   app.add_option("--lidar-columns", cfg.lidar_columns, "LiDAR horizontal resolution")
       ->check(CLI::Range(60, static_cast<int>(limits::kMaxLidarColumns)));
   app.add_option("--json", json_path, "write the metrics (colag_sim's schema) here");

@@ -14,7 +14,7 @@
 #include "bench_safety.hpp"
 #include "bench_speed.hpp"
 #include "bench_tables.hpp"
-#include "colag/sim/guarded_main.hpp"
+#include "colag/sim/host_program.hpp"
 #include "tsptw_instance.hpp"
 
 using namespace colag;
@@ -67,7 +67,7 @@ int run(int argc, char** argv) {
       ->check(CLI::IsMember({"1", "2", "all"}));
   tables->add_option("--csv", topt.csv, "per-mission results");
   tables->add_option("--max-time", topt.max_time_s, "simulated seconds per mission")
-      ->check(CLI::PositiveNumber);
+      ->check(sim::positive_up_to(1e6));
   tables->add_option("--sim", topt.sim, "colag_sim to run (default: next to colag_bench)");
   tables->add_flag("--quick", topt.quick, "one small configuration, one seed (a smoke run)");
   auto* safety = app.add_subcommand(
@@ -77,7 +77,7 @@ int run(int argc, char** argv) {
   safety->add_option("--jobs", sopt.jobs, "missions at once")->check(CLI::Range(1, 64));
   safety->add_option("--csv", sopt.csv, "per-mission results");
   safety->add_option("--max-time", sopt.max_time_s, "simulated seconds per mission")
-      ->check(CLI::PositiveNumber);
+      ->check(sim::positive_up_to(1e6));
   safety->add_option("--sim", sopt.sim, "colag_sim to run (default: next to colag_bench)");
   safety->add_flag("--quick", sopt.quick, "dense, 3 UGVs, two fault settings, one seed");
   auto* speed = app.add_subcommand(
@@ -87,9 +87,9 @@ int run(int argc, char** argv) {
   speed->add_option("--scenario", popt.scenario, "sparse or dense")
       ->check(CLI::IsMember({"sparse", "dense"}));
   speed->add_option("--ugvs", popt.ugvs, "UGVs")->check(CLI::Range(1, 16));
-  speed->add_option("--seed", popt.seed, "seed");
+  speed->add_option("--seed", popt.seed, "seed")->check(CLI::Range(0, 2147483647));
   speed->add_option("--target", popt.target, "real-time factor the median should reach")
-      ->check(CLI::PositiveNumber);
+      ->check(sim::positive_up_to(1e6));
   speed->add_option("--sim", popt.sim, "colag_sim to run (default: next to colag_bench)");
   speed->add_option("--baseline", popt.baseline,
                     "another colag_sim to alternate with, run for run (A/B comparison)");

@@ -1,7 +1,8 @@
 #pragma once
 // Draws a simulated mission, seen from above: obstacles, what stayed unknown to the UAV, each
 // UGV's true path (solid) and estimate (dots), its 3-sigma ellipses every 5 s, the support
-// points it asked for, the UAV's route, and every collision in red.
+// points it asked for, the UAV's route, and every collision in red; axes in metres. The view
+// fits the arena and every path, whatever the map's size or shape; the caption is below it.
 #include <string>
 
 #include "colag/sim/mission/mission.hpp"

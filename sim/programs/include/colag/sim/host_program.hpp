@@ -1,0 +1,64 @@
+#pragma once
+// What the main of every host program (colag_sim, colag_world, colag_bench) shares: nothing
+// escapes it as an exception, a bad option is exit code 2, and numbers are checked with messages
+// a user can read (CLI11 2.1's own validators print the largest double, 309 digits). A library's
+// exception (an allocation, CLI11, OpenCV writing a picture) ends the program with its message and
+// the program's error exit code, not with abort() and a core.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <optional>
+#include <string>
+
+namespace colag::sim {
+
+template <class Run>
+int guarded_main(const char* program, int error_code, Run&& run) {
+  try {
+    return run();
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: %s\n", program, e.what());
+  } catch (...) {
+    std::fprintf(stderr, "%s: unexpected error\n", program);
+  }
+  return error_code;
+}
+
+// A seed: a whole number >= 0 (CLI11 would wrap -1 to 18446744073709551615).
+inline const CLI::Validator kSeed(
+    [](std::string& s) -> std::string {
+      if (s.empty() || s.size() > 19 || s.find_first_not_of("0123456789") != std::string::npos)
+        return "expected a whole number from 0 to 9999999999999999999, got '" + s + "'";
+      return {};
+    },
+    "SEED");
+
+// A number in (0, max].
+inline CLI::Validator positive_up_to(double max) {
+  char bound[32];
+  std::snprintf(bound, sizeof bound, "%g", max);
+  const std::string limit = bound;
+  return CLI::Validator(
+      [max, limit](std::string& s) -> std::string {
+        char* end = nullptr;
+        const double v = std::strtod(s.c_str(), &end);
+        if (s.empty() || *end != '\0' || !(v > 0.0 && v <= max))
+          return "expected a number > 0 and <= " + limit + ", got '" + s + "'";
+        return {};
+      },
+      "(0, " + limit + "]");
+}
+
+// CLI11's parse with our exit codes (CLI11's own are 100+): nullopt to go on; 0 after --help;
+// 2, the usage error of every program, after a bad option (CLI11 prints what was wrong).
+inline std::optional<int> parse_command_line(CLI::App& app, int argc, char** argv) {
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+  return std::nullopt;
+}
+
+}  // namespace colag::sim
