@@ -189,6 +189,17 @@ void yaml_seeds(const fs::path& dir, const fs::path& config_dir) {
   write(dir, "ugv_flow_style", Bytes(flow.begin(), flow.end()));
 }
 
+// fuzz_tsptw: instances in the benchmark sets' text format.
+void tsptw_seeds(const fs::path& dir) {
+  const std::string six =
+      "# depot + 5 customers\n6\n0 10 17 14 22 9\n10 0 11 15 13 18\n17 11 0 9 8 22\n"
+      "14 15 9 0 14 13\n22 13 8 14 0 25\n9 18 22 13 25 0\n0 200\n0 30\n20 60\n40 80\n"
+      "30 70\n60 120\n";
+  write(dir, "six_nodes", Bytes(six.begin(), six.end()));
+  const std::string two = "2\n0 1.5\n1.5 0\n0 1e9\n0 0.5\n";
+  write(dir, "two_nodes_late", Bytes(two.begin(), two.end()));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -202,6 +213,7 @@ int main(int argc, char** argv) {
   idl_seeds(out / "idl_sample");
   pcd_seeds(out / "pcd");
   yaml_seeds(out / "yaml_config", argv[2]);
+  tsptw_seeds(out / "tsptw");
   std::cout << "seed corpora written under " << out << "\n";
   return 0;
 }
