@@ -15,6 +15,7 @@
 #include "colag/sim/host_program.hpp"
 #include "colag/sim/mission/mission.hpp"
 #include "colag/sim/mission_png.hpp"
+#include "colag/sim/world/pcd_writer.hpp"
 
 using namespace colag;
 
@@ -101,6 +102,9 @@ int run(int argc, char** argv) {
       ->check(CLI::Range(-49.0, 49.0));
   app.add_option("--json", json_path, "write the metrics as JSON to this file");
   app.add_option("--png", png_path, "draw the mission into this PNG file");
+  std::string save_map;
+  app.add_option("--save-map", save_map,
+                 "write the scenario's map as a PCD file (the paper's format) and exit");
   app.add_flag("--quiet", quiet, "no progress bar, no table");
   app.add_flag("--verbose", verbose,
                "also list every stop of every UGV and the host time of each task");
@@ -123,6 +127,18 @@ int run(int argc, char** argv) {
                    name, text.c_str());
       return 2;
     }
+  }
+
+  if (!save_map.empty()) {
+    sim::BoxWorld world;
+    std::string error;
+    if (!mission::build_world(cfg, world, error) || !sim::save_pcd(save_map, world, error)) {
+      std::fprintf(stderr, "colag_sim: %s\n", error.c_str());
+      return 2;
+    }
+    if (!quiet)
+      std::printf("colag_sim: %zu boxes written to %s\n", world.boxes.size(), save_map.c_str());
+    return 0;
   }
 
   // Outputs that cannot be written fail now, not after the mission.

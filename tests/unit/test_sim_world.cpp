@@ -81,6 +81,32 @@ TEST(PcdLoader, MalformedFilesGiveClearErrors) {
   EXPECT_FALSE(load_pcd("/nonexistent.pcd", pts, error));
 }
 
+// The project's own evaluation maps ship with it (sim/maps/, written by colag_sim --save-map):
+// a clone has them, and reading one back gives exactly the boxes the scenario generates.
+TEST(PcdLoader, TheShippedDenseMapReadsBackAsItsEightyBoxes) {
+  std::vector<Vec3> pts;
+  std::string error;
+  ASSERT_TRUE(load_pcd(COLAG_SIM_MAPS "/dense_seed1.pcd", pts, error)) << error;
+  const BoxWorld loaded = box_world_from_points(pts);
+  MapGenConfig gen;
+  gen.boxes = 80;
+  gen.seed = 1;
+  const BoxWorld generated = generate_box_world(gen).value();
+  ASSERT_EQ(loaded.boxes.size(), generated.boxes.size());
+  for (const Box& g : generated.boxes) {
+    int matches = 0;
+    for (const Box& l : loaded.boxes) {
+      if ((l.center - g.center).norm() < 1e-6 && (l.half_size - g.half_size).norm() < 1e-6 &&
+          std::abs(l.height_m - g.height_m) < 1e-6)
+        ++matches;
+    }
+    EXPECT_EQ(matches, 1) << "box at (" << g.center.x() << ", " << g.center.y() << ")";
+  }
+  ASSERT_TRUE(load_pcd(COLAG_SIM_MAPS "/sparse_seed1.pcd", pts, error)) << error;
+  EXPECT_EQ(box_world_from_points(pts).boxes.size(), 40u);
+}
+
+// The paper's own map, where it is beside the project.
 TEST(PcdLoader, ThePapersDenseMapHasItsEightyBoxes) {
   std::vector<Vec3> pts;
   std::string error;
