@@ -62,4 +62,6 @@ done
 # blas/ and lapack/, whose links dpkg-deb -x does not create).
 find "$sysroot" -name '*.so*' \( -type f -o -type l \) -printf '%h\n' | sort -u |
   sed "s|^$sysroot/||" | grep -E '^(usr/)?lib' > "$sysroot/rpath-link.txt"
+# The aarch64 toolchain file refuses a sysroot without this mark of a finished run.
+printf '%s\n' $packages > "$sysroot/.complete"
 echo "sysroot-arm64: ready in $sysroot ($(du -sh "$sysroot" | cut -f1))"

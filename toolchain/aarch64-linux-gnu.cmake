@@ -10,6 +10,13 @@ set(CMAKE_LIBRARY_ARCHITECTURE aarch64-linux-gnu)
 if(NOT DEFINED COLAG_SYSROOT)
   get_filename_component(COLAG_SYSROOT "${CMAKE_CURRENT_LIST_DIR}/../build/sysroot-arm64" ABSOLUTE)
 endif()
+list(APPEND CMAKE_TRY_COMPILE_PLATFORM_VARIABLES COLAG_SYSROOT)  # the compiler checks read it too
+# Without a complete sysroot, stop before anything is searched: a package found on the host now
+# would stay in the cache after the sysroot appears (cmake/CrossLibraries.cmake checks the rest).
+if(NOT EXISTS "${COLAG_SYSROOT}/.complete")
+  message(FATAL_ERROR "aarch64: no complete sysroot in ${COLAG_SYSROOT}: run "
+                      "scripts/sysroot-arm64.sh first (or set COLAG_SYSROOT)")
+endif()
 set(CMAKE_FIND_ROOT_PATH "${COLAG_SYSROOT}" /usr/aarch64-linux-gnu)
 set(CMAKE_FIND_ROOT_PATH_MODE_PROGRAM NEVER)
 set(CMAKE_FIND_ROOT_PATH_MODE_LIBRARY ONLY)
