@@ -2,7 +2,9 @@
 
 #include "colag/platform/dds/convert.hpp"
 
+#include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <string>
 
 namespace colag::platform::dds {
@@ -15,6 +17,11 @@ std::size_t index(msg::Topic t) {
 }  // namespace
 
 DdsTransport::~DdsTransport() {
+  if (writer_.joinable()) {
+    stopping_.store(true);
+    out_pending_.release();  // wake the writer: it writes what is queued, then stops
+    writer_.join();
+  }
   if (participant_ > 0) dds_delete(participant_);
 }
 
@@ -124,6 +131,7 @@ Status DdsTransport::init(const DdsConfig& config) {
     }
     dds_delete_qos(qos);
   }
+  writer_ = std::thread([this] { writer_loop(); });
   return Status::ok();
 }
 
@@ -152,23 +160,67 @@ Status DdsTransport::write(dds_entity_t writer, const void* sample) {
   IdlSample<Msg> idl;
   to_idl(*static_cast<const Msg*>(sample), idl);
   const dds_return_t rc = dds_write(writer, &idl.sample);
-  if (rc != DDS_RETCODE_OK) return fail(rc, "dds_write failed");
+  if (rc != DDS_RETCODE_OK) return {Errc::kUnavailable, "dds_write failed"};  // the writer thread
   return Status::ok();
 }
 
 Status DdsTransport::publish(msg::Topic topic, const void* sample) {
   const std::size_t i = index(topic);
   if (i >= msg::kTopicCount || sample == nullptr || writers_[i] <= 0) {
-    ++stats_.transport.rejected;
+    refused_.fetch_add(1, std::memory_order_relaxed);
     return {Errc::kInvalidArgument, "DDS transport: no writer for this topic"};
   }
-  const Status s =
-      msg::visit_message_type(topic, [&]<class Msg>() { return write<Msg>(writers_[i], sample); });
-  if (s) {
-    ++stats_.transport.published;
-  } else {
-    ++stats_.transport.rejected;
+  {
+    const std::lock_guard<std::mutex> lock(out_mutex_);
+    if (out_size_ == outbox_.size()) {
+      overflowed_.fetch_add(1, std::memory_order_relaxed);
+      return {Errc::kCapacityExceeded, "DDS transport: outbox full (the writer is behind)"};
+    }
+    Outgoing& slot = outbox_[(out_head_ + out_size_) % outbox_.size()];
+    slot.topic = topic;
+    std::memcpy(slot.bytes.data(), sample, msg::topic_info(topic).size_bytes);
+    ++out_size_;
+    queued_.fetch_add(1, std::memory_order_relaxed);
   }
+  out_pending_.release();
+  return Status::ok();
+}
+
+void DdsTransport::writer_loop() {
+  Outgoing out;  // the writer's own copy: dds_write runs outside the mutex
+  for (;;) {
+    out_pending_.acquire();
+    {
+      const std::lock_guard<std::mutex> lock(out_mutex_);
+      if (out_size_ == 0) {
+        if (stopping_.load()) return;
+        continue;  // the wake-up to stop, with samples still to write first
+      }
+      out = outbox_[out_head_];
+      out_head_ = (out_head_ + 1) % outbox_.size();
+      --out_size_;
+    }
+    const std::size_t i = index(out.topic);
+    const Status s = msg::visit_message_type(
+        out.topic, [&]<class Msg>() { return write<Msg>(writers_[i], out.bytes.data()); });
+    (s ? written_ : write_failed_).fetch_add(1, std::memory_order_relaxed);
+    handled_.fetch_add(1, std::memory_order_release);
+    if (stopping_.load()) out_pending_.release();  // keep draining until the outbox is empty
+  }
+}
+
+void DdsTransport::flush() {
+  const std::uint64_t target = queued_.load(std::memory_order_relaxed);
+  while (writer_.joinable() && handled_.load(std::memory_order_acquire) < target)
+    std::this_thread::sleep_for(std::chrono::microseconds(100));
+}
+
+DdsStats DdsTransport::dds_stats() const {
+  DdsStats s = stats_;
+  s.transport.published = written_.load(std::memory_order_relaxed);
+  s.transport.rejected =
+      refused_.load(std::memory_order_relaxed) + write_failed_.load(std::memory_order_relaxed);
+  s.transport.overflowed = overflowed_.load(std::memory_order_relaxed);
   return s;
 }
 

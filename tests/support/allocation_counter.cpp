@@ -1,5 +1,6 @@
 #include "allocation_counter.hpp"
 
+#include <atomic>
 #include <cerrno>
 #include <cstddef>
 #include <cstdlib>
@@ -13,15 +14,19 @@ namespace {
 // initial-exec TLS: touching it never allocates (a must inside malloc).
 __attribute__((tls_model("initial-exec"))) thread_local bool t_armed = false;
 __attribute__((tls_model("initial-exec"))) thread_local std::uint64_t t_count = 0;
+// Every thread: armed by how many all-thread counters are alive (lock-free, so safe in malloc).
+std::atomic<int> g_armed{0};
+std::atomic<std::uint64_t> g_count{0};
 
 // Set COLAG_ALLOC_ABORT=1 to abort at the first counted allocation (then read the backtrace
 // in a debugger: that is the allocation to remove).
 bool g_abort_on_allocation = false;
 
 inline void note_allocation() {
-  if (!t_armed) return;
-  ++t_count;
-  if (g_abort_on_allocation) __builtin_trap();
+  const bool all = g_armed.load(std::memory_order_relaxed) > 0;
+  if (all) g_count.fetch_add(1, std::memory_order_relaxed);
+  if (t_armed) ++t_count;
+  if ((all || t_armed) && g_abort_on_allocation) __builtin_trap();
 }
 }  // namespace
 
@@ -84,20 +89,29 @@ int posix_memalign(void** memptr, std::size_t alignment, std::size_t size) {
 
 namespace colag::test {
 
-AllocationCounter::AllocationCounter() {
+AllocationCounter::AllocationCounter(Threads threads) : threads_(threads) {
   static const bool abort_requested = [] {
     const char* v = std::getenv("COLAG_ALLOC_ABORT");
     return v != nullptr && v[0] == '1';
   }();
   g_abort_on_allocation = abort_requested;
-  t_count = 0;
-  t_armed = true;
+  if (threads_ == Threads::kAll) {
+    start_ = g_count.load();
+    g_armed.fetch_add(1);
+  } else {
+    t_count = 0;
+    t_armed = true;
+  }
 }
 AllocationCounter::~AllocationCounter() {
-  t_armed = false;
+  if (threads_ == Threads::kAll) {
+    g_armed.fetch_sub(1);
+  } else {
+    t_armed = false;
+  }
 }
 std::uint64_t AllocationCounter::count() const {
-  return t_count;
+  return threads_ == Threads::kAll ? g_count.load() - start_ : t_count;
 }
 
 }  // namespace colag::test

@@ -9,6 +9,7 @@
 #include "colag/hal/scripted/scripted_devices.hpp"
 #include "colag/platform/lockstep_executor.hpp"
 #include "colag/platform/loopback_transport.hpp"
+#include "colag/platform/worker_pool.hpp"
 #include "colag/sim/world/lidar_simulator.hpp"
 #include "colag/uav/rpe_relay.hpp"
 #include "colag/uav/uav_supervisor_task.hpp"
@@ -92,7 +93,8 @@ class Collect final : public platform::SampleSink {
 };
 
 struct Rig {
-  Rig() {
+  // `fork_join` (optional): the mapper splits each scan over its workers, as on a board.
+  explicit Rig(ForkJoin* fork_join = nullptr) {
     sim::MapGenConfig cfg;
     cfg.boxes = 40;
     cfg.seed = 3;
@@ -100,8 +102,8 @@ struct Rig {
     bus = std::make_unique<platform::LoopbackTransport>(1);
     lidar = std::make_unique<hal::scripted::ScriptedLidar>();
     sky = std::make_unique<Sky>(odom, *lidar, camera, fc, world);
-    uav =
-        std::make_unique<UavSupervisorTask>(UavSupervisorConfig{}, *bus, odom, *lidar, camera, fc);
+    uav = std::make_unique<UavSupervisorTask>(UavSupervisorConfig{}, *bus, odom, *lidar, camera, fc,
+                                              fork_join);
     pump = std::make_unique<platform::TransportPump>(*bus);
     EXPECT_TRUE(bus->subscribe(msg::topic_of<msg::MapPatch>, kAnyRobot, patches));
     EXPECT_TRUE(bus->subscribe(msg::topic_of<msg::SupportPlan>, kAnyRobot, plans));
@@ -269,8 +271,10 @@ TEST(UavSupervisorTask, PatchesAreHundredsOfTimesSmallerThanTheOriginalFormat) {
       << " patches";
 }
 
+// Counted on every thread: the mapper's work on the pool's worker thread is the task's too.
 TEST(UavSupervisorTask, StepsAllocateNothingInSteadyState) {
-  Rig rig;
+  platform::WorkerPool pool(1);
+  Rig rig(&pool);
   rig.sky->ugvs = {Vec2(2, 1), Vec2(-3, 2)};
   rig.status(0, Vec2(2, 1));
   rig.status(1, Vec2(-3, 2));

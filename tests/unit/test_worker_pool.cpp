@@ -40,7 +40,7 @@ TEST(WorkerPool, UsesTheWorkerThreadsWhenThePartsTakeTime) {
   EXPECT_EQ(seen.size(), 2u) << "the worker never took a part";
 }
 
-TEST(WorkerPool, RunAllocatesNothingOnTheCallingThread) {
+TEST(WorkerPool, RunAllocatesNothingOnAnyThread) {
   platform::WorkerPool pool(1);
   int sum[2] = {0, 0};
   pool.run(2, [&](int k) { sum[k] += 1; });  // warm up

@@ -55,5 +55,6 @@ inline constexpr std::size_t kLoopbackMaxInFlight = 512;     // samples held by 
 inline constexpr std::size_t kLoopbackMaxDeliveries = 4096;  // (sample, subscriber) pairs pending
 inline constexpr std::size_t kDefaultReaderDepth = 8;
 inline constexpr std::size_t kLaneOutboxSamples = 8;  // one simulated robot's samples per instant
+inline constexpr std::size_t kDdsOutboxDepth = 64;    // samples awaiting the DDS writer thread
 
 }  // namespace colag::limits

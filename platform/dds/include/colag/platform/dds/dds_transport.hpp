@@ -2,12 +2,19 @@
 // Transport over Cyclone DDS (C API): one participant per robot, one DDS topic per message of
 // msg::Messages with its topic's QoS (msg::kTopicTable), keyed by robot id. Samples are taken on
 // the caller's thread in poll(), converted back to message structs and handed to the sinks, so
-// tasks never see a DDS thread. Our code allocates nothing after init; Cyclone allocates internally
-// when serialising (that is the library's own memory, bounded by the QoS history depths).
+// tasks never see a DDS thread. publish() copies the sample into a fixed outbox and returns: the
+// transport's writer thread hands it to Cyclone, which allocates for every write (a serialised
+// sample and its buffer), so that no task thread calls malloc. Nothing of ours allocates after
+// init.
 #include <dds/dds.h>
 
 #include <array>
+#include <atomic>
+#include <cstddef>
 #include <cstdint>
+#include <mutex>
+#include <semaphore>
+#include <thread>
 
 #include "colag/common/limits.hpp"
 #include "colag/common/static_vector.hpp"
@@ -55,10 +62,14 @@ class DdsTransport final : public Transport {
 
   Status subscribe(msg::Topic topic, RobotId key, SampleSink& sink) override;
   using Transport::publish;  // the typed overload
+  // Queues the sample for the writer thread; refused when the outbox is full (counted as
+  // overflowed) or the topic has no writer.
   Status publish(msg::Topic topic, const void* sample) override;
   void poll(TimePoint now) override;
-  TransportStats stats() const override { return stats_.transport; }
-  const DdsStats& dds_stats() const { return stats_; }
+  TransportStats stats() const override { return dds_stats().transport; }
+  DdsStats dds_stats() const;
+  // Waits until every sample published so far has been handed to DDS.
+  void flush();
   // The raw return code of the last failed DDS call (see dds_strretcode), for diagnostics.
   dds_return_t last_error() const { return last_error_; }
 
@@ -68,8 +79,13 @@ class DdsTransport final : public Transport {
     RobotId key;
     SampleSink* sink;
   };
+  struct Outgoing {
+    msg::Topic topic{};
+    alignas(std::max_align_t) std::array<std::byte, msg::kMaxMessageBytes> bytes{};
+  };
   template <class Msg>
   Status write(dds_entity_t writer, const void* sample);
+  void writer_loop();
   template <class Msg>
   void drain(msg::Topic topic, TimePoint now);
   void dispatch(msg::Topic topic, const void* sample, TimePoint now);
@@ -83,8 +99,19 @@ class DdsTransport final : public Transport {
   std::array<dds_entity_t, msg::kTopicCount> writers_{};
   std::array<dds_entity_t, msg::kTopicCount> readers_{};
   StaticVector<Subscription, limits::kMaxSubscriptions> subscriptions_;
-  DdsStats stats_;
+  DdsStats stats_;  // what poll() counts (the executor's thread)
   dds_return_t last_error_ = 0;
+
+  // The outbox: publish() fills a slot under the mutex (a copy, nothing allocated); the writer
+  // thread copies it out in order and writes it outside the mutex.
+  std::array<Outgoing, limits::kDdsOutboxDepth> outbox_{};
+  std::size_t out_head_ = 0, out_size_ = 0;  // guarded by out_mutex_
+  mutable std::mutex out_mutex_;
+  std::counting_semaphore<limits::kDdsOutboxDepth + 1> out_pending_{0};
+  std::atomic<std::uint64_t> queued_{0}, handled_{0};  // publish()ed, and finished by the writer
+  std::atomic<std::uint64_t> written_{0}, write_failed_{0}, overflowed_{0}, refused_{0};
+  std::atomic<bool> stopping_{false};
+  std::thread writer_;
 };
 
 }  // namespace colag::platform::dds
