@@ -6,7 +6,7 @@
 #                   [--json OUT] [--netns] [--loss PCT] [--domain D] [--build DIR]
 #                   [--time-scale X]
 # Waits for the mission to end, writes the metrics JSON (colag_sim's schema; default
-# build/sitl/metrics.json), stops every process by PID, prints a summary, and exits 0 when
+# build/sitl/run-<pid>/metrics.json), stops every process by PID, prints a summary, and exits 0 when
 # every UGV reached its goal with no collision (1 otherwise, 2 on a usage or set-up error, 77
 # when --netns cannot work on this machine: not root, no iproute2/nftables, no namespaces).
 #   --netns     every robot in its own network namespace (the world in a hub namespace with a
@@ -16,13 +16,15 @@
 #               DDS packets (nftables; the simulator's own link is not degraded).
 #   --time-scale X  X simulated seconds per wall-clock second for every process (default 1:
 #               real time); they all scale CLOCK_MONOTONIC alike, so they agree on the time.
+#   --domain D  the robots' DDS domain (the sim link uses D + 1); default: a free one. Every run
+#               holds its domain (a lock per domain), so runs at the same time never share one.
 # Logs and configurations: build/sitl/run-<pid>/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-ugvs=3 scenario=dense seed=1 max_time=400 json=build/sitl/metrics.json netns=0 loss=0 scale=1
-build=build/host domain=$((10 + ($$ % 100) * 2))
-usage() { sed -n '2,21p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
+ugvs=3 scenario=dense seed=1 max_time=400 json="" netns=0 loss=0 scale=1
+build=build/host domain=""
+usage() { sed -n '2,23p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
 while (($#)); do
   case "$1" in
     --ugvs) ugvs=$2; shift 2 ;;
@@ -62,7 +64,19 @@ if ((netns)); then
   ip netns delete "colag-probe-$$"
 fi
 
+. "$(dirname "$0")/lib/claim-domain.sh"
+[[ -z $domain || ($domain =~ ^[0-9]+$ && domain -le 231) ]] ||
+  { echo "sitl: --domain must be 0..231 (the sim link uses the next one)" >&2; exit 2; }
+if ! claim_domain "$domain"; then
+  if [ -n "$domain" ]; then
+    echo "sitl: domain $domain is in use by another SITL run on this machine" >&2
+  else
+    echo "sitl: every domain is in use by other SITL runs on this machine" >&2
+  fi
+  exit 2
+fi
 run=build/sitl/run-$$
+[ -n "$json" ] || json=$run/metrics.json  # each run its own: two runs never share an output
 mkdir -p "$run" "$(dirname "$json")"
 run=$(cd "$run" && pwd)
 rm -f "$json"
