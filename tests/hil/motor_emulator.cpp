@@ -1,6 +1,8 @@
 // A motor controller on a real CAN interface, for hardware-in-the-loop runs: the simulator's
 // UgvBody (the wheel model and the protocol's controller side) stepped at 50 Hz in real time
-// on SocketCAN. Stops after --seconds (so that the board's watchdog can be seen to trip).
+// on SocketCAN. Stops after --seconds (so that the board's watchdog can be seen to trip) and,
+// with --report FILE, writes the wheels' true travel there ("distance_m yaw_rad"): what the
+// board's odometry is judged against, whatever commands reached it and when.
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -16,13 +18,17 @@ int main(int argc, char** argv) {
   using namespace colag;
   std::string interface = "vcan0";
   double run_s = 5.0;
+  std::string report;
   for (int i = 1; i + 1 < argc; i += 2) {
-    if (std::strcmp(argv[i], "--interface") == 0)
+    if (std::strcmp(argv[i], "--interface") == 0) {
       interface = argv[i + 1];
-    else if (std::strcmp(argv[i], "--seconds") == 0)
+    } else if (std::strcmp(argv[i], "--seconds") == 0) {
       run_s = std::atof(argv[i + 1]);
-    else {
-      std::fprintf(stderr, "usage: %s [--interface vcan0] [--seconds 5]\n", argv[0]);
+    } else if (std::strcmp(argv[i], "--report") == 0) {
+      report = argv[i + 1];
+    } else {
+      std::fprintf(stderr, "usage: %s [--interface vcan0] [--seconds 5] [--report FILE]\n",
+                   argv[0]);
       return 2;
     }
   }
@@ -49,5 +55,14 @@ int main(int argc, char** argv) {
   }
   std::printf("motor emulator: stopped after %.1f s; true pose x %.3f y %.3f yaw %.3f, %.3f m\n",
               run_s, body.pose().p.x(), body.pose().p.y(), body.pose().yaw_rad, body.travelled_m());
+  if (!report.empty()) {
+    // Written to a temporary name and renamed: a reader never sees half a file.
+    const std::string tmp = report + ".tmp";
+    if (std::FILE* f = std::fopen(tmp.c_str(), "w")) {
+      std::fprintf(f, "%.6f %.6f\n", body.travelled_m(), body.pose().yaw_rad);
+      std::fclose(f);
+      std::rename(tmp.c_str(), report.c_str());
+    }
+  }
   return 0;
 }
