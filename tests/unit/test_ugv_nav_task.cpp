@@ -271,6 +271,25 @@ TEST(UgvNavTask, RejectsAndCountsBadMessagesWithoutHarm) {
   ASSERT_TRUE(rig.run_until([&] { return rig.ugv->mode() == msg::UgvMode::kArrived; }, 30s));
 }
 
+// One UAV odometry sample stamped an hour ahead used to become the history's newest: every
+// genuine sample after it was refused as "not increasing", no relative pose found its UAV pose,
+// and the UGV never initialised. Now it is refused as from the future, and nothing else is.
+TEST(UgvNavTask, AFutureStampedUavOdometrySampleLocksNothingOut) {
+  Rig rig(Vec2(4.0, 0.0));
+  rig.publish_map(-3.2, -3.2, 9.6, 3.2);
+  msg::UavOdometry future;
+  future.stamp = TimePoint{1h};
+  future.position_m[2] = 2.0;
+  ASSERT_TRUE(rig.bus->publish(future));
+  rig.ex.run_until(TimePoint{2s});
+  const UgvHealth& h = rig.ugv->health();
+  EXPECT_EQ(h.stamps.from_future, 1u);
+  EXPECT_EQ(h.uav_odometry_rejected, 1u);
+  EXPECT_EQ(h.rpe_unmatched, 0u);
+  EXPECT_TRUE(rig.ugv->estimator().initialized());
+  ASSERT_TRUE(rig.run_until([&] { return rig.ugv->mode() == msg::UgvMode::kArrived; }, 30s));
+}
+
 TEST(UgvNavTask, StepsAllocateNothingInSteadyState) {
   Rig rig(Vec2(0.0, 15.0), Vec3(0, 5, 2));
   rig.publish_map(-6.4, -3.2, 6.4, 19.2);

@@ -60,7 +60,13 @@ UavSupervisorTask::UavSupervisorTask(const UavSupervisorConfig& config,
       flight_cutter_(flight_cutter_config(config)),
       flight_layer_(flight_layer_config(config)),
       flight_(config.flight),
-      scheduler_(config.scheduler) {}
+      scheduler_(config.scheduler) {
+  const Duration skew = config.max_future_skew;
+  odometry_stamps_ = StampGate({skew, config.max_input_age, true});
+  camera_stamps_ = StampGate({skew, config.max_input_age, false});
+  request_stamps_.fill(StampGate({skew, config.request_timeout, true}));
+  status_stamps_.fill(StampGate({skew, config.status_timeout, true}));
+}
 
 Status UavSupervisorTask::init(TimePoint now) {
   if (initialised_) return Status::ok();
@@ -79,8 +85,11 @@ void UavSupervisorTask::control_step(TimePoint now) {
   last_control_ = now;
   hal::UavState s;
   while (odometry_.poll(s)) {
-    if (!all_finite(s.pose.p) || !s.pose.q.coeffs().allFinite() || !all_finite(s.velocity_mps))
+    if (!all_finite(s.pose.p) || !s.pose.q.coeffs().allFinite() || !all_finite(s.velocity_mps) ||
+        !StampGate::passed(odometry_stamps_.check(s.stamp, now))) {
+      ++health_.odometry_rejected;
       continue;
+    }
     state_ = s;
     have_state_ = true;
     msg::UavOdometry od;
@@ -102,7 +111,7 @@ void UavSupervisorTask::control_step(TimePoint now) {
   const std::size_t n = camera_.poll(detections);
   for (std::size_t i = 0; i < n; ++i) {
     const Result<msg::RelativePose> m = to_message(detections[i], config_.id);
-    if (!m || detections[i].stamp > now + config_.max_future_skew) {
+    if (!m || !StampGate::passed(camera_stamps_.check(detections[i].stamp, now))) {
       ++health_.rpe_rejected;
       continue;
     }
@@ -168,15 +177,18 @@ void UavSupervisorTask::read_requests(TimePoint now) {
     const bool finite = std::isfinite(ci.time_to_collision_s) &&
                         std::isfinite(ci.support_point_m[0]) &&
                         std::isfinite(ci.support_point_m[1]);
-    if (ci.ugv_id >= limits::kMaxUgvs || ci.stamp > now + config_.max_future_skew ||
-        ci.stamp < now - config_.request_timeout ||
+    if (ci.ugv_id >= limits::kMaxUgvs ||
         (!ci.cancel && (!finite || ci.time_to_collision_s < 0.0))) {
       ++health_.requests_rejected;
       continue;
     }
+    const StampGate::Verdict v = request_stamps_[ci.ugv_id].check(ci.stamp, now);
+    if (v == StampGate::Verdict::kNotIncreasing) continue;  // old or duplicate: dropped
+    if (!StampGate::passed(v)) {
+      ++health_.requests_rejected;
+      continue;
+    }
     Request& r = requests_[ci.ugv_id];
-    if (r.heard != TimePoint{} && ci.seq <= r.seq && ci.stamp <= r.heard)
-      continue;  // old or duplicate
     r.seq = ci.seq;
     r.heard = ci.stamp;
     if (ci.cancel) {
@@ -200,12 +212,17 @@ void UavSupervisorTask::read_statuses(TimePoint now) {
   while (statuses_in_.pop(s)) {
     if (s.ugv_id >= limits::kMaxUgvs || !std::isfinite(s.position_m[0]) ||
         !std::isfinite(s.position_m[1]) || !std::isfinite(s.yaw_rad) ||
-        !std::isfinite(s.velocity_mps) || s.stamp > now + config_.max_future_skew) {
+        !std::isfinite(s.velocity_mps)) {
+      ++health_.statuses_rejected;
+      continue;
+    }
+    const StampGate::Verdict v = status_stamps_[s.ugv_id].check(s.stamp, now);
+    if (v == StampGate::Verdict::kNotIncreasing) continue;  // duplicate or overtaken: dropped
+    if (!StampGate::passed(v)) {
       ++health_.statuses_rejected;
       continue;
     }
     Ugv& u = ugvs_[s.ugv_id];
-    if (u.known && s.stamp <= u.status.stamp) continue;
     u.known = true;
     u.heard = now;
     u.status = s;
@@ -324,6 +341,13 @@ void UavSupervisorTask::publish_plan(TimePoint now, bool changed) {
 void UavSupervisorTask::scheduling_step(TimePoint now) {
   read_requests(now);
   read_statuses(now);
+  StampCounters stamps = odometry_stamps_.counters();
+  stamps += camera_stamps_.counters();
+  for (std::size_t i = 0; i < limits::kMaxUgvs; ++i) {
+    stamps += request_stamps_[i].counters();
+    stamps += status_stamps_[i].counters();
+  }
+  health_.stamps = stamps;
   if (!have_state_) return;
   const int previous_first = schedule_.order.empty() ? -1 : stop_ugv_[schedule_.order[0] - 1u];
   solve(now);

@@ -47,7 +47,16 @@ UgvNavTask::UgvNavTask(const UgvNavConfig& config, platform::Transport& transpor
       planner_(config.planner),
       controller_(config.controller, config.limits),
       predictor_(config.predictor, config.ekf.noise),
-      support_(config.support) {}
+      support_(config.support) {
+  // Wheel samples are stamped by this board's clock (their order is the EKF's to check); the
+  // UAV's odometry must increase (the history interpolates along it); relative poses may come
+  // late and out of order within the EKF's history; each UGV's statuses must increase.
+  wheel_stamps_ = StampGate(stamp_limits(false));
+  uav_odometry_stamps_ = StampGate(stamp_limits(true));
+  rpe_stamps_ = StampGate(stamp_limits(false));
+  patch_stamps_ = StampGate(stamp_limits(false));
+  status_stamps_.fill(StampGate(stamp_limits(true)));
+}
 
 Status UgvNavTask::init(TimePoint now) {
   if (initialised_) return Status::ok();  // both loops call init; the first one does the work
@@ -76,7 +85,8 @@ void UgvNavTask::control_step(TimePoint now) {
 void UgvNavTask::read_odometry(TimePoint now) {
   hal::WheelOdometrySample s;
   while (odometry_.poll(s)) {
-    if (s.stamp > now + config_.max_future_skew || !ekf_.predict(s.stamp, s.v_mps, s.omega_radps)) {
+    if (!StampGate::passed(wheel_stamps_.check(s.stamp, now)) ||
+        !ekf_.predict(s.stamp, s.v_mps, s.omega_radps)) {
       ++health_.odometry_rejected;
     }
   }
@@ -91,11 +101,15 @@ void UgvNavTask::read_odometry(TimePoint now) {
 void UgvNavTask::read_relative_poses(TimePoint now) {
   msg::UavOdometry od;
   while (uav_odometry_in_.pop(od)) {
-    if (!uav_history_.push(od)) ++health_.uav_odometry_rejected;
+    // A sample from the future would otherwise become the history's newest and lock out every
+    // genuine one after it; a UAV whose clock went back starts a new history.
+    const StampGate::Verdict v = uav_odometry_stamps_.check(od.stamp, now);
+    if (v == StampGate::Verdict::kRestarted) uav_history_.clear();
+    if (!StampGate::passed(v) || !uav_history_.push(od)) ++health_.uav_odometry_rejected;
   }
   msg::RelativePose rpe;
   while (rpe_in_.pop(rpe)) {
-    if (rpe.ugv_id != config_.id || !fresh(rpe.stamp, now)) {
+    if (rpe.ugv_id != config_.id || !StampGate::passed(rpe_stamps_.check(rpe.stamp, now))) {
       ++health_.rpe_rejected;
       continue;
     }
@@ -184,6 +198,7 @@ void UgvNavTask::planning_step(TimePoint now) {
   predictor_.set_horizon_scale(1.0 - 0.25 * health_.degradation);
   read_map_patches(now);
   read_other_ugvs(now);
+  sum_stamp_counters();
   if (!ekf_.initialized()) {
     // Not localised yet: ask the UAV to come to where the mission plan says we are.
     SupportNeed need;
@@ -205,10 +220,20 @@ void UgvNavTask::planning_step(TimePoint now) {
   publish_status(now);
 }
 
+void UgvNavTask::sum_stamp_counters() {
+  StampCounters sum;
+  for (const StampGate* g : {&wheel_stamps_, &uav_odometry_stamps_, &rpe_stamps_, &patch_stamps_})
+    sum += g->counters();
+  for (const StampGate& g : status_stamps_)
+    sum += g.counters();
+  health_.stamps = sum;
+}
+
 void UgvNavTask::read_map_patches(TimePoint now) {
   msg::MapPatch patch;
   while (patches_in_.pop(patch)) {
-    if (patch.ugv_id != config_.id || !fresh(patch.stamp, now) || !map_.apply(patch)) {
+    if (patch.ugv_id != config_.id || !StampGate::passed(patch_stamps_.check(patch.stamp, now)) ||
+        !map_.apply(patch)) {
       ++health_.patches_rejected;
     }
   }
@@ -228,12 +253,17 @@ void UgvNavTask::read_other_ugvs(TimePoint now) {
   msg::UgvStatus s;
   while (statuses_in_.pop(s)) {
     if (s.ugv_id == config_.id) continue;  // our own, echoed back
-    if (s.ugv_id >= limits::kMaxUgvs || !finite_status(s) || !fresh(s.stamp, now)) {
+    if (s.ugv_id >= limits::kMaxUgvs || !finite_status(s)) {
+      ++health_.statuses_rejected;
+      continue;
+    }
+    const StampGate::Verdict v = status_stamps_[s.ugv_id].check(s.stamp, now);
+    if (v == StampGate::Verdict::kNotIncreasing) continue;  // duplicate or overtaken: dropped
+    if (!StampGate::passed(v)) {
       ++health_.statuses_rejected;
       continue;
     }
     OtherUgv& o = others_[s.ugv_id];
-    if (o.known && s.stamp <= o.status.stamp) continue;  // duplicate or reordered
     o.known = true;
     o.heard = now;
     o.status = s;

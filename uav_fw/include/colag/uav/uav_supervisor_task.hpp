@@ -12,6 +12,7 @@
 #include <cstdint>
 
 #include "colag/common/map_store.hpp"
+#include "colag/common/stamp_gate.hpp"
 #include "colag/hal/flight_controller.hpp"
 #include "colag/hal/lidar.hpp"
 #include "colag/hal/odometry_source.hpp"
@@ -55,11 +56,13 @@ struct UavSupervisorConfig {
   Duration flight_layer_period = std::chrono::seconds(1);
   Duration plan_publish_period = std::chrono::seconds(1);
   Duration max_future_skew = std::chrono::milliseconds(200);
+  Duration max_input_age = std::chrono::seconds(2);  // odometry and camera frames older: refused
 };
 
 enum class UavMode : std::uint8_t { kIdle, kTransit, kHover };
 
 struct UavHealth {
+  std::uint64_t odometry_rejected = 0;  // the UAV's own odometry: not finite, or its stamp
   std::uint64_t rpe_published = 0;
   std::uint64_t rpe_rejected = 0;
   std::uint64_t requests_rejected = 0;
@@ -69,6 +72,7 @@ struct UavHealth {
   std::uint64_t schedules = 0;
   std::uint64_t schedules_exact = 0;
   std::uint64_t hover_timeouts = 0;
+  StampCounters stamps;  // every input stream's stamp checks, summed (scheduling loop)
 };
 
 class UavSupervisorTask {
@@ -145,6 +149,9 @@ class UavSupervisorTask {
 
   platform::QueueReader<msg::CollisionInfo, 4 * limits::kMaxUgvs> requests_in_;
   platform::QueueReader<msg::UgvStatus, 4 * limits::kMaxUgvs> statuses_in_;
+  // Each input stream's stamp checks (requests and statuses: one per UGV).
+  StampGate odometry_stamps_, camera_stamps_;
+  std::array<StampGate, limits::kMaxUgvs> request_stamps_{}, status_stamps_{};
 
   hal::UavState state_;
   bool have_state_ = false;

@@ -21,6 +21,7 @@ class UavOdometryHistory {
   // is within `tolerance` (t outside the kept history).
   bool pose_at(TimePoint t, Duration tolerance, Pose3& out) const;
   TimePoint newest() const { return entries_.empty() ? kNever : entries_.back().t; }
+  void clear() { entries_.clear(); }  // the UAV's clock went back: its old samples do not fit
 
  private:
   struct Entry {

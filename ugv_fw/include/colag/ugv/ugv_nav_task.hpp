@@ -10,6 +10,7 @@
 #include <cstdint>
 
 #include "colag/common/overrun_governor.hpp"
+#include "colag/common/stamp_gate.hpp"
 #include "colag/hal/drive.hpp"
 #include "colag/hal/wheel_odometry.hpp"
 #include "colag/platform/readers.hpp"
@@ -34,6 +35,7 @@ struct UgvHealth {
   std::uint64_t support_messages = 0;
   std::uint64_t overruns = 0;  // steps of either loop over budget (real-time executor only)
   int degradation = 0;         // OverrunGovernor level: 0 = full prediction horizon
+  StampCounters stamps;        // every input stream's stamp checks, summed (planning loop)
 
   std::uint64_t rejected_inputs() const {
     return odometry_rejected + uav_odometry_rejected + rpe_rejected + rpe_unmatched + rpe_outliers +
@@ -92,9 +94,10 @@ class UgvNavTask {
   void predict_and_request(TimePoint now);
   void publish_status(TimePoint now);
 
-  bool fresh(TimePoint stamp, TimePoint now) const {
-    return stamp <= now + config_.max_future_skew && stamp >= now - config_.max_message_age;
+  StampLimits stamp_limits(bool increasing) const {
+    return {config_.max_future_skew, config_.max_message_age, increasing};
   }
+  void sum_stamp_counters();
   void command(TimePoint now, double v, double omega);
 
   UgvNavConfig config_;
@@ -109,6 +112,10 @@ class UgvNavTask {
   platform::QueueReader<msg::RelativePose, 16> rpe_in_;
   platform::QueueReader<msg::MapPatch, 8> patches_in_;
   platform::QueueReader<msg::UgvStatus, 2 * limits::kMaxUgvs> statuses_in_;
+
+  // Each input stream's stamp checks (the other UGVs': one per sender).
+  StampGate wheel_stamps_, uav_odometry_stamps_, rpe_stamps_, patch_stamps_;
+  std::array<StampGate, limits::kMaxUgvs> status_stamps_{};
 
   UgvEkf ekf_;
   UavOdometryHistory uav_history_;
