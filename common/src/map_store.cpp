@@ -90,6 +90,27 @@ void MapStore::set_cell(CellIndex c, CellState s) {
   state_[i] = s;
 }
 
+int MapStore::free_under(const Vec2& centre, double radius_m) {
+  if (!all_finite(centre) || !(radius_m >= 0.0) || radius_m > 10.0) return 0;
+  const auto& g = geometry();
+  const CellIndex lo = g.cell_of(centre - Vec2::Constant(radius_m));
+  const CellIndex hi = g.cell_of(centre + Vec2::Constant(radius_m));
+  int freed = 0;
+  for (int y = std::max(lo.y, 0); y <= std::min(hi.y, g.cells_y() - 1); ++y) {
+    for (int x = std::max(lo.x, 0); x <= std::min(hi.x, g.cells_x() - 1); ++x) {
+      // The cell's point nearest to the centre: a cell the robot stands on in part counts.
+      const Vec2 d =
+          ((g.center_of({x, y}) - centre).cwiseAbs() - Vec2::Constant(0.5 * g.resolution()))
+              .cwiseMax(0.0);
+      if (d.squaredNorm() > radius_m * radius_m || state_[g.index({x, y})] != CellState::kUnknown)
+        continue;
+      set_cell({x, y}, CellState::kFree);
+      ++freed;
+    }
+  }
+  return freed;
+}
+
 Status MapStore::apply(const msg::MapPatch& patch) {
   const auto reject = [&](Status s) {
     ++counters_.patches_rejected;

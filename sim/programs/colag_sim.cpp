@@ -51,6 +51,9 @@ void print_table(const mission::MissionOutcome& o) {
     std::printf("  map patches         %8llu (%.1f B payload each)\n",
                 static_cast<unsigned long long>(o.map_patches),
                 static_cast<double>(o.map_patch_bytes) / static_cast<double>(o.map_patches));
+    std::printf("  team filter         %8llu UGVs located anew, %llu returns kept out of the map\n",
+                static_cast<unsigned long long>(o.team_located),
+                static_cast<unsigned long long>(o.team_returns_dropped));
   }
   std::printf("  simulated %.1f s in %.2f s wall (%.0fx real time)\n", o.sim_time_s, o.wall_time_s,
               o.sim_time_s / std::max(o.wall_time_s, 1e-9));
@@ -88,7 +91,7 @@ int run(int argc, char** argv) {
       ->check(CLI::Range(1, 8));
   // Fault injection.
   double loss_pct = 0.0, odom_bias_pct = 0.0;
-  std::string uav_blackout, rpe_blackout;
+  std::string blackout, uav_blackout, rpe_blackout;
   auto* faults = app.add_option_group("faults", "fault injection");
   faults->add_option("--loss", loss_pct, "share of messages lost, % (every topic)")
       ->check(CLI::Range(0.0, 100.0));
@@ -96,6 +99,8 @@ int run(int argc, char** argv) {
       ->check(CLI::Range(0.0, 10000.0));
   faults->add_option("--jitter-ms", cfg.faults.jitter_ms, "+ uniform jitter, ms (reorders)")
       ->check(CLI::Range(0.0, 10000.0));
+  faults->add_option("--blackout", blackout,
+                     "T0:T1 s: every robot is silent (every topic of every robot lost)");
   faults->add_option("--uav-blackout", uav_blackout, "T0:T1 s: the UAV is silent (all its topics)");
   faults->add_option("--rpe-blackout", rpe_blackout, "T0:T1 s: no relative poses");
   faults->add_option("--odom-bias", odom_bias_pct, "wheel-encoder scale error, %")
@@ -120,7 +125,8 @@ int run(int argc, char** argv) {
   cfg.faults.loss = loss_pct / 100.0;
   cfg.faults.odom_bias = odom_bias_pct / 100.0;
   for (const auto& [text, window, name] :
-       {std::tuple{uav_blackout, &cfg.faults.uav_blackout, "--uav-blackout"},
+       {std::tuple{blackout, &cfg.faults.blackout, "--blackout"},
+        std::tuple{uav_blackout, &cfg.faults.uav_blackout, "--uav-blackout"},
         std::tuple{rpe_blackout, &cfg.faults.rpe_blackout, "--rpe-blackout"}}) {
     if (!text.empty() && !mission::parse_window(text, *window)) {
       std::fprintf(stderr, "colag_sim: %s: expected T0:T1 in seconds with 0 <= T0 < T1, got '%s'\n",

@@ -290,6 +290,43 @@ TEST(UgvNavTask, AFutureStampedUavOdometrySampleLocksNothingOut) {
   ASSERT_TRUE(rig.run_until([&] { return rig.ugv->mode() == msg::UgvMode::kArrived; }, 30s));
 }
 
+// Another UGV that falls silent (its firmware died, or every message is lost) is not forgotten
+// after 3 s: it stays an obstacle whose disc grows with the time since it was heard, bounded by
+// its top speed; heard again, it shrinks back to its reported uncertainty.
+TEST(UgvNavTask, ASilentUgvStaysAnObstacleThatGrowsUntilItIsHeardAgain) {
+  Rig rig(Vec2(8.0, 0.0));
+  rig.publish_map(-3.2, -3.2, 9.6, 6.4);
+  const auto other_status = [&] {
+    msg::UgvStatus s;
+    s.stamp = rig.ex.now();
+    s.ugv_id = 1;
+    s.mode = msg::UgvMode::kDriving;
+    s.position_m[0] = 5.0;  // 2 m beside the way to the goal
+    s.position_m[1] = 2.0;
+    s.covariance[0] = s.covariance[4] = 1e-4;
+    s.covariance[8] = 1e-4;
+    ASSERT_TRUE(rig.bus->publish(s));
+  };
+  other_status();  // heard once, then silent
+  ASSERT_TRUE(rig.run_until(
+      [&] {
+        return rig.ugv->mode() == msg::UgvMode::kWaitingForSupport ||
+               rig.ugv->mode() == msg::UgvMode::kNoPath;
+      },
+      10s));
+  rig.ex.run_until(rig.ex.now() + 10s);  // long past the 3 s after which it was forgotten
+  EXPECT_NE(rig.ugv->mode(), msg::UgvMode::kDriving);
+  EXPECT_NE(rig.ugv->mode(), msg::UgvMode::kArrived);
+  EXPECT_LT(rig.world->truth.p.x(), 4.0);  // it never drove past the silent one
+
+  other_status();  // heard again, where it was: the way is clear
+  for (int i = 0; i < 300 && rig.ugv->mode() != msg::UgvMode::kArrived; ++i) {
+    rig.ex.run_until(rig.ex.now() + 100ms);
+    if (i % 5 == 0) other_status();  // and heard from every half second now
+  }
+  EXPECT_EQ(rig.ugv->mode(), msg::UgvMode::kArrived);
+}
+
 TEST(UgvNavTask, StepsAllocateNothingInSteadyState) {
   Rig rig(Vec2(0.0, 15.0), Vec3(0, 5, 2));
   rig.publish_map(-6.4, -3.2, 6.4, 19.2);

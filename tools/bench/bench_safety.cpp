@@ -23,6 +23,7 @@ const std::vector<FaultSetting>& settings() {
       {"loss30+lat300", {"--loss", "30", "--latency-ms", "300"}},
       {"loss20+jit200", {"--loss", "20", "--latency-ms", "100", "--jitter-ms", "200"}},
       {"uav-blackout20s", {"--uav-blackout", "20:40"}},
+      {"all-blackout10s", {"--blackout", "20:30"}},
       {"rpe-blackout30s", {"--rpe-blackout", "15:45"}},
       {"odom-bias3%", {"--odom-bias", "3"}},
   };

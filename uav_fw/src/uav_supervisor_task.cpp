@@ -56,6 +56,7 @@ UavSupervisorTask::UavSupervisorTask(const UavSupervisorConfig& config,
       scheduling_loop_(*this, "uav_scheduling", &UavSupervisorTask::init,
                        &UavSupervisorTask::scheduling_step),
       mapper_(mapper_config(config), fork_join),
+      team_filter_(config.team),
       sharer_(config.sharer),
       flight_cutter_(flight_cutter_config(config)),
       flight_layer_(flight_layer_config(config)),
@@ -128,11 +129,30 @@ void UavSupervisorTask::control_step(TimePoint now) {
 
 void UavSupervisorTask::mapping_step(TimePoint now) {
   hal::LidarScanView scan;
-  if (lidar_.poll(scan) && have_state_)
-    mapper_.insert_scan(state_.pose.compose(config_.lidar_mount), scan);
+  if (lidar_.poll(scan) && have_state_) {
+    const Pose3 sensor = state_.pose.compose(config_.lidar_mount);
+    filter_team(now);
+    mapper_.insert_scan(sensor, team_filter_.apply(scan, sensor, mapper_));
+  }
   if (have_state_ && elapsed(now, flight_layer_at_, config_.flight_layer_period)) {
     flight_layer_at_ = now;
     refresh_flight_layer();
+  }
+}
+
+// The UGVs as their fresh statuses say (if their estimators are initialised), for the team filter.
+void UavSupervisorTask::filter_team(TimePoint now) {
+  team_filter_.begin();
+  for (std::size_t id = 0; id < ugvs_.size(); ++id) {
+    const Ugv& u = ugvs_[id];
+    if (!u.known || now - u.heard > config_.status_timeout ||
+        u.status.mode == msg::UgvMode::kWaitingForInit) {
+      continue;
+    }
+    const double var = std::max({u.status.covariance[0], u.status.covariance[4], 0.0});
+    (void)team_filter_.add(id, Vec2(u.status.position_m[0], u.status.position_m[1]),
+                           3.0 * std::sqrt(var), now - u.heard, u.status.yaw_rad,
+                           u.status.velocity_mps);
   }
 }
 

@@ -214,6 +214,9 @@ void UgvNavTask::planning_step(TimePoint now) {
     ekf_resets_seen_ = ekf_.counters().resets;
     replan_requested_ = true;
   }
+  // The UAV cannot see the ground under this robot (its body hides it): it is free, since the
+  // robot stands on it.
+  (void)map_.free_under(ekf_.pose().p, config_.body_radius_m);
   collect_others(now);
   if (!arrived_ && !fault_ && replan_needed(now)) replan(now);
   predict_and_request(now);
@@ -274,19 +277,26 @@ void UgvNavTask::collect_others(TimePoint now) {
   others_predict_.clear();
   others_plan_.clear();
   const Vec2 me = ekf_.pose().p;
+  const GridGeometry2d& g = map_.geometry();
+  const double map_diagonal = std::hypot(g.cells_x(), g.cells_y()) * g.resolution();
   for (const OtherUgv& o : others_) {
-    if (!o.known || now - o.heard > config_.other_ugv_timeout) continue;
-    // Where it is now, having kept its reported velocity since its status was stamped.
+    if (!o.known) continue;
+    // Where it is now, having kept its reported velocity since its status was stamped (for half
+    // a second at most: a silent robot may have stopped).
     const Vec2 v =
         o.status.velocity_mps * Vec2(std::cos(o.status.yaw_rad), std::sin(o.status.yaw_rad));
     const double age = std::clamp(to_seconds(now - o.status.stamp), 0.0, 0.5);
     const Vec2 p = Vec2(o.status.position_m[0], o.status.position_m[1]) + age * v;
-    if ((p - me).norm() > config_.other_ugv_range_m) continue;
     Mat2 cov;
     cov << o.status.covariance[0], o.status.covariance[1], o.status.covariance[3],
         o.status.covariance[4];
+    // Its own 3 sigma (capped: a robot lost on its own is not a wall), then as far as it can
+    // have driven since it was last heard (our clock: another board's stamps do not tell).
+    const double silent_s = std::max(to_seconds(now - o.heard), 0.0);
     const double extent =
-        std::min(3.0 * sigma_major(cov), 2.0);  // capped: a lost robot is not a wall
+        std::min(3.0 * sigma_major(cov), 2.0) + config_.other_ugv_max_speed_mps * silent_s;
+    if (extent > map_diagonal) continue;  // it could be anywhere: no obstacle says anything
+    if ((p - me).norm() - extent > config_.other_ugv_range_m) continue;
     (void)others_predict_.push_back(
         {p, config_.map.predict_inflation_m + config_.body_radius_m + extent, v});
     (void)others_plan_.push_back(

@@ -14,6 +14,7 @@
 #include "colag/sim/world/sim_world.hpp"
 #include "colag/uav/map_sharer.hpp"
 #include "colag/uav/mapper.hpp"
+#include "colag/uav/team_filter.hpp"
 #include "colag/uav/uav_supervisor_task.hpp"
 #include "colag/ugv/ugv_nav_task.hpp"
 
@@ -32,14 +33,16 @@ void apply_faults(const FaultConfig& fc, double t, platform::LoopbackTransport& 
   base.jitter = seconds(fc.jitter_ms / 1e3);
   platform::LinkFaults lost = base;
   lost.drop_probability = 1.0;
-  const bool uav_out = fc.uav_blackout.contains(t);
+  const bool all_out = fc.blackout.contains(t);
+  const bool uav_out = all_out || fc.uav_blackout.contains(t);
   const bool rpe_out = uav_out || fc.rpe_blackout.contains(t);
   for (std::size_t i = 0; i < msg::kTopicCount; ++i) {
     const auto topic = static_cast<msg::Topic>(i);
     const bool from_uav =
         topic == msg::topic_of<msg::UavOdometry> || topic == msg::topic_of<msg::RelativePose> ||
         topic == msg::topic_of<msg::MapPatch> || topic == msg::topic_of<msg::SupportPlan>;
-    const bool out = topic == msg::topic_of<msg::RelativePose> ? rpe_out : (from_uav && uav_out);
+    const bool out =
+        all_out || (topic == msg::topic_of<msg::RelativePose> ? rpe_out : (from_uav && uav_out));
     bus.set_faults(topic, out ? lost : base);
   }
 }
@@ -79,7 +82,16 @@ class SelfPerceptionTask final : public platform::Task {
     const Pose2& g = world_.ugv(id_).pose();
     hal::LidarScanView scan;
     if (world_.ugv_lidar(id_).poll(scan)) {
-      mapper_->insert_scan({Vec3(g.p.x(), g.p.y(), 0.4), quat_from_yaw(g.yaw_rad)}, scan);
+      // The other UGVs, where they truly are (this baseline knows true poses), are kept out of
+      // its map as the UAV keeps them out of its own.
+      team_.begin();
+      for (int j = 0; j < world_.ugv_count(); ++j) {
+        const sim::UgvBody& other = world_.ugv(j);
+        (void)team_.add(static_cast<std::size_t>(j), other.pose().p, 0.0, Duration::zero(),
+                        other.pose().yaw_rad, other.speed_mps());
+      }
+      const Pose3 sensor{Vec3(g.p.x(), g.p.y(), 0.4), quat_from_yaw(g.yaw_rad)};
+      mapper_->insert_scan(sensor, team_.apply(scan, sensor, *mapper_));
     }
     msg::RelativePose rp;  // the true pose, relative to the reference frame
     rp.stamp = now;
@@ -107,6 +119,7 @@ class SelfPerceptionTask final : public platform::Task {
   sim::SimWorld& world_;
   int id_;
   std::unique_ptr<uav::Mapper> mapper_;
+  uav::TeamFilter team_;
   uav::MapSharer sharer_;
 };
 
@@ -392,6 +405,8 @@ MissionOutcome Mission::collect(MissionTrace* trace) const {
     out.map_patch_bytes = p.uav->sharer().counters().bytes;
     out.schedules = p.uav->health().schedules;
     out.schedules_exact = p.uav->health().schedules_exact;
+    out.team_located = p.uav->team_filter().counters().located;
+    out.team_returns_dropped = p.uav->team_filter().counters().dropped;
   }
   if (trace != nullptr) {
     for (const auto& c : p.world->collisions())

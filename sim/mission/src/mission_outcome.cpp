@@ -79,6 +79,7 @@ std::string to_json(const MissionOutcome& o, bool include_wall_time) {
     j["faults"] = {{"loss", f.loss},
                    {"latency_ms", f.latency_ms},
                    {"jitter_ms", f.jitter_ms},
+                   {"blackout_s", {f.blackout.from_s, f.blackout.to_s}},
                    {"uav_blackout_s", {f.uav_blackout.from_s, f.uav_blackout.to_s}},
                    {"rpe_blackout_s", {f.rpe_blackout.from_s, f.rpe_blackout.to_s}},
                    {"odom_bias", f.odom_bias}};
@@ -123,6 +124,8 @@ std::string to_json(const MissionOutcome& o, bool include_wall_time) {
   j["map_patch_bytes"] = o.map_patch_bytes;
   j["schedules"] = o.schedules;
   j["schedules_exact"] = o.schedules_exact;
+  j["team_located"] = o.team_located;
+  j["team_returns_dropped"] = o.team_returns_dropped;
   return j.dump(2);
 }
 

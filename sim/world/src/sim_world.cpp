@@ -56,6 +56,7 @@ SimWorld::SimWorld(const SimWorldConfig& config, BoxWorld world, const hal::Cloc
                    ForkJoin* fork_join)
     : config_(config),
       world_(std::move(world)),
+      scene_(world_),
       clock_(clock),
       fork_join_(fork_join),
       rng_(config.seed) {
@@ -68,6 +69,8 @@ SimWorld::~SimWorld() = default;
 int SimWorld::add_ugv(const Pose2& start) {
   const auto seed = config_.seed * 1000003ULL + ugvs_.size() + 1;
   ugvs_.push_back(std::make_unique<Ugv>(config_.ugv, start, seed, clock_));
+  scene_.boxes.emplace_back();  // its body, placed by update_scene
+  update_scene();
   return static_cast<int>(ugvs_.size()) - 1;
 }
 
@@ -103,15 +106,30 @@ double SimWorld::min_clearance_m(int i) const {
   return ugvs_.at(static_cast<std::size_t>(i))->min_clearance;
 }
 
-bool SimWorld::line_of_sight(const Vec3& a, const Vec3& b) const {
+bool SimWorld::line_of_sight(const Vec3& a, const Vec3& b, int except_ugv) const {
   const Vec3 d = b - a;
   const double len = d.norm();
   if (len < 1e-9) return true;
-  for (const Box& box : world_.boxes) {
-    const double t = ray_box(a, d / len, box);
+  const std::size_t skip = except_ugv < 0
+                               ? scene_.boxes.size()
+                               : world_.boxes.size() + static_cast<std::size_t>(except_ugv);
+  for (std::size_t i = 0; i < scene_.boxes.size(); ++i) {
+    if (i == skip) continue;
+    const double t = ray_box(a, d / len, scene_.boxes[i]);
     if (t >= 0.0 && t < len) return false;
   }
   return true;
+}
+
+// A UGV's chassis as the sensors see it: the square inscribed in its footprint disc (the disc is
+// the collision model: it circumscribes the chassis at any heading), axis-aligned (the LiDAR casts
+// axis-aligned boxes), up to its top.
+void SimWorld::update_scene() {
+  const double r = config_.ugv.radius_m / std::sqrt(2.0);
+  for (std::size_t i = 0; i < ugvs_.size(); ++i) {
+    scene_.boxes[world_.boxes.size() + i] = {ugvs_[i]->body.pose().p, Vec2(r, r),
+                                             config_.ugv.height_m};
+  }
 }
 
 void SimWorld::detect(TimePoint now) {
@@ -124,7 +142,7 @@ void SimWorld::detect(TimePoint now) {
     const Vec3 to_tag = tag - cam.p;
     if (to_tag.norm() > c.range_m) continue;
     if (std::acos(std::clamp(-to_tag.normalized().z(), -1.0, 1.0)) > c.fov_half_angle_rad) continue;
-    if (!line_of_sight(cam.p, tag)) continue;
+    if (!line_of_sight(cam.p, tag, static_cast<int>(i))) continue;  // its own body carries it
     const Pose3 truth =
         cam.inverse().compose({Vec3(g.p.x(), g.p.y(), 0.0), quat_from_yaw(g.yaw_rad)});
     hal::RelativePoseDetection d;
@@ -175,17 +193,19 @@ void SimWorld::step(TimePoint now, double dt) {
   watch_collisions(now);
   if (now >= next_scan_) {
     next_scan_ = now + config_.lidar_period;
-    if (uav_) uav_lidar_->scan(world_, uav_->state().pose, now);
+    update_scene();
+    if (uav_) uav_lidar_->scan(scene_, uav_->state().pose, now);
     for (auto& u : ugvs_) {
       if (!u->lidar) continue;
       const Pose2& g = u->body.pose();
-      u->lidar->scan(world_,
+      u->lidar->scan(scene_,
                      {Vec3(g.p.x(), g.p.y(), config_.ugv_lidar_height_m), quat_from_yaw(g.yaw_rad)},
                      now);
     }
   }
   if (uav_ && now >= next_frame_) {
     next_frame_ = now + config_.camera.period;
+    update_scene();
     detect(now);
   }
 }

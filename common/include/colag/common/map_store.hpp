@@ -62,6 +62,11 @@ class MapStore {
   bool plan_blocked(const Vec2& p) const { return plan_blocked(geometry().cell_of(p)); }
   bool predict_blocked(const Vec2& p) const { return predict_blocked(geometry().cell_of(p)); }
 
+  // The ground under the robot itself: the UAV cannot see under it, and its standing there is
+  // proof that nothing else does. The unknown cells the disc covers (in part) become free;
+  // returns how many did. Called after every patch, which may say unknown there again.
+  int free_under(const Vec2& centre, double radius_m);
+
   const MapStoreConfig& config() const { return config_; }
   const MapStoreCounters& counters() const { return counters_; }
 

@@ -66,6 +66,7 @@ struct MapperCounters {
   std::uint64_t rays_merged = 0;      // ended in a voxel an earlier ray of the scan ended in
   std::uint64_t rays_resumed = 0;     // back-traces finished in the sensor's row or column
   std::uint64_t scans_by_column = 0;  // scans cut into west and east halves
+  std::uint64_t voxels_forgotten = 0;
 };
 
 class Mapper {
@@ -76,6 +77,10 @@ class Mapper {
 
   // Integrates one scan taken from `sensor` (sensor frame -> world).
   void insert_scan(const Pose3& sensor, const hal::LidarScanView& scan);
+  // Back to unknown: the voxels whose centres lie within `radius_m` of `centre` (horizontally)
+  // and between z_low_m and z_high_m. What was mapped there is no longer believed (a robot turned
+  // out to stand there). Returns how many voxels were known.
+  std::size_t forget(const Vec2& centre, double radius_m, double z_low_m, double z_high_m);
 
   const GridGeometry3d& geometry() const { return kWorldGrid3d; }
   VoxelState state(VoxelIndex v) const;

@@ -23,6 +23,7 @@
 #include "colag/uav/map_sharer.hpp"
 #include "colag/uav/mapper.hpp"
 #include "colag/uav/scheduler.hpp"
+#include "colag/uav/team_filter.hpp"
 #include "colag/uav/uav_schedule.hpp"
 
 namespace colag::uav {
@@ -34,6 +35,7 @@ struct UavSupervisorConfig {
   MapperConfig mapper;
   SharerConfig sharer;
   SchedulerConfig scheduler;
+  TeamFilterConfig team;  // the UGVs' own returns, kept out of the map while they are alive
   // The paper's fallback when no order meets every deadline: plan as if v_max were 1.5x, 2.25x,
   // ... higher until one does (up to 100 times). Off: minimise total lateness instead.
   bool vmax_escalation = false;
@@ -99,6 +101,7 @@ class UavSupervisorTask {
 
   const Mapper& mapper() const { return mapper_; }
   const MapSharer& sharer() const { return sharer_; }
+  const TeamFilter& team_filter() const { return team_filter_; }
   const ScheduleResult& schedule() const { return schedule_; }
   const msg::SupportPlan& plan() const { return plan_; }
   UavMode mode() const { return mode_; }
@@ -136,6 +139,7 @@ class UavSupervisorTask {
   void solve(TimePoint now);
   bool choose_target(TimePoint now, Vec2& target);
   void refresh_flight_layer();
+  void filter_team(TimePoint now);
   void publish_plan(TimePoint now, bool changed);
 
   UavSupervisorConfig config_;
@@ -158,6 +162,7 @@ class UavSupervisorTask {
   TimePoint last_control_{};
   TimePoint flight_layer_at_ = kNever;
   Mapper mapper_;
+  TeamFilter team_filter_;
   MapSharer sharer_;
   MapSharer flight_cutter_;  // cuts flight-altitude patches for the flight layer
   MapStore flight_layer_;

@@ -46,7 +46,10 @@ struct UgvNavConfig {
   Duration rpe_match_tolerance = std::chrono::milliseconds(100);
   Duration max_message_age = std::chrono::seconds(2);         // older RPE / patches are ignored
   Duration max_future_skew = std::chrono::milliseconds(200);  // newer than now + this: rejected
-  Duration other_ugv_timeout = std::chrono::seconds(3);
+  // Another UGV not heard from is not forgotten: it stays an obstacle whose disc grows at this
+  // speed (the fastest a UGV drives) with the time since it was heard, until it is heard again
+  // or the disc would cover the whole map.
+  double other_ugv_max_speed_mps = 0.7;
   double other_ugv_range_m = 6.0;  // other UGVs farther than this are not planned around
   bool use_rpe_updates = true;     // false: the ablation "RPE only initialises the EKF"
 };

@@ -23,17 +23,19 @@ struct TimeWindow {
 };
 bool parse_window(const std::string& s, TimeWindow& out);  // "T0:T1" in seconds
 
-// Fault injection: network faults on every topic of the loopback transport, outages of the UAV
-// (all its topics) or of its relative poses alone, and a wheel-encoder scale error.
+// Fault injection: network faults on every topic of the loopback transport, outages of every
+// robot (every topic), of the UAV (all its topics) or of its relative poses alone, and a
+// wheel-encoder scale error.
 struct FaultConfig {
   double loss = 0.0;  // share of samples dropped, 0..1
   double latency_ms = 0.0, jitter_ms = 0.0;
+  TimeWindow blackout;      // every topic of every robot lost
   TimeWindow uav_blackout;  // odometry, relative poses, map patches and plans all lost
   TimeWindow rpe_blackout;  // relative poses lost
   double odom_bias = 0.0;   // the encoders report (1 + bias) x the true motion
   bool any() const {
-    return loss > 0.0 || latency_ms > 0.0 || jitter_ms > 0.0 || !uav_blackout.empty() ||
-           !rpe_blackout.empty() || odom_bias != 0.0;
+    return loss > 0.0 || latency_ms > 0.0 || jitter_ms > 0.0 || !blackout.empty() ||
+           !uav_blackout.empty() || !rpe_blackout.empty() || odom_bias != 0.0;
   }
 };
 

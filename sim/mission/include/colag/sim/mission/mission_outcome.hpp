@@ -55,6 +55,10 @@ struct MissionOutcome {
   std::uint64_t map_patch_bytes = 0;  // payload bytes of every patch sent
   std::uint64_t schedules = 0;
   std::uint64_t schedules_exact = 0;
+  // The UAV's team filter: times a UGV became located (its mapped body forgotten), and LiDAR
+  // returns kept out of the map as a live UGV's.
+  std::uint64_t team_located = 0;
+  std::uint64_t team_returns_dropped = 0;
 };
 
 // What the mission figure draws.

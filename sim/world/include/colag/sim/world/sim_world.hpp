@@ -3,6 +3,8 @@
 // link, speaking the real protocol), the UAV body, and the UAV's sensors as HAL devices — a
 // VLP-32-like LiDAR and a camera that measures the relative pose of every UGV within range
 // and line of sight. Optionally every UGV has its own LiDAR (the self-perception baseline).
+// The UGVs' bodies are obstacles to those sensors like the boxes: they block LiDAR rays and the
+// camera's view (a UGV frozen by a collision, or whose firmware died, is seen, not invisible).
 // Ground truth is watched at every step: the UGV footprints against the obstacles and each
 // other; a collision is recorded (never hidden) and the UGV stops where it hit.
 // Host-side only. Built once before a run; step() allocates nothing.
@@ -75,7 +77,8 @@ class SimWorld {
   const UgvBody& ugv(int i) const;
   double min_clearance_m(int i) const;
   const std::vector<CollisionEvent>& collisions() const { return collisions_; }
-  bool line_of_sight(const Vec3& a, const Vec3& b) const;
+  // Nothing blocks the segment: no box, and no UGV body but `except_ugv`'s (-1: none).
+  bool line_of_sight(const Vec3& a, const Vec3& b, int except_ugv = -1) const;
 
  private:
   struct Ugv;
@@ -83,9 +86,11 @@ class SimWorld {
   class Camera;
   void detect(TimePoint now);
   void watch_collisions(TimePoint now);
+  void update_scene();
 
   SimWorldConfig config_;
   BoxWorld world_;
+  BoxWorld scene_;  // what the sensors see: world_'s boxes, then one box per UGV body
   const hal::Clock& clock_;
   ForkJoin* fork_join_;
   Rng rng_;

@@ -14,6 +14,7 @@ namespace colag::sim {
 
 struct UgvBodyConfig {
   double radius_m = 0.25;
+  double height_m = 0.3;  // the body's top (the AprilTag lies on it): what sensors see of it
   hal::can::WheelProtocolConfig protocol;
   hal::can::WheelGeometry geometry;
   double wheel_accel_mps2 = 1.0;
