@@ -25,6 +25,14 @@ Ellipse::Axes Ellipse::axes() const {
   return {std::sqrt(l(1)), std::sqrt(l(0)), std::atan2(major.y(), major.x())};
 }
 
+Ellipse Ellipse::grown(double m) const {
+  if (!(m > 0.0)) return *this;
+  Eigen::SelfAdjointEigenSolver<Mat2> eig(M);
+  const Vec2 l = eig.eigenvalues().cwiseMax(0.0).cwiseSqrt() + Vec2::Constant(m);
+  const Mat2& V = eig.eigenvectors();
+  return {center, V * l.cwiseAbs2().asDiagonal() * V.transpose()};
+}
+
 bool Ellipse::contains(const Vec2& p) const {
   const Vec2 d = p - center;
   return d.dot(M.ldlt().solve(d)) <= 1.0;

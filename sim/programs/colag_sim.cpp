@@ -64,9 +64,10 @@ int run(int argc, char** argv) {
   mission::MissionConfig cfg;
   std::string map_file, ablation = "none", json_path, png_path;
   bool quiet = false, verbose = false;
-  auto* scenario =
-      app.add_option("--scenario", cfg.scenario, "generated map: sparse (40 boxes) or dense (80)")
-          ->check(CLI::IsMember({"sparse", "dense"}));
+  auto* scenario = app.add_option("--scenario", cfg.scenario,
+                                  "generated map: sparse (40 boxes), dense (80) or pillars (80, "
+                                  "0.2-0.5 m wide, 0.6-1.2 m tall)")
+                       ->check(CLI::IsMember({"sparse", "dense", "pillars"}));
   app.add_option("--map", map_file, "a PCD map instead (ascii or binary; x y z)")
       ->excludes(scenario)
       ->check(CLI::ExistingFile);
@@ -171,6 +172,9 @@ int run(int argc, char** argv) {
                    100.0 * std::min(f, 1.0));
     };
   }
+  cfg.warn = [](const std::string& w) {
+    std::fprintf(stderr, "colag_sim: warning: %s\n", w.c_str());
+  };
   mission::MissionTrace trace;
   std::string error;
   const auto outcome =
@@ -193,8 +197,7 @@ int run(int argc, char** argv) {
     std::printf("\nstops (UGV, from - to, where, why)\n");
     for (const auto& s : trace.stops) {
       std::printf("  %2d  %7.1f - %7.1f s  (%6.2f, %6.2f)  %s\n", s.ugv, s.from_s, s.to_s,
-                  s.where.x(), s.where.y(),
-                  s.for_support ? "waiting for support" : "waiting for the first relative pose");
+                  s.where.x(), s.where.y(), mission::standing_reason(s.why, s.blocked).c_str());
     }
     double total = 0.0;
     for (const auto& t : o.task_times)

@@ -190,7 +190,7 @@ int run(int argc, char** argv) {
   double time_scale = 1.0;
   bool quiet = false;
   app.add_option("--scenario", cfg.scenario, "sparse | dense")
-      ->check(CLI::IsMember({"sparse", "dense"}));
+      ->check(CLI::IsMember({"sparse", "dense", "pillars"}));
   app.add_option("--map", cfg.map_file, "a PCD map instead of a generated scenario");
   app.add_option("--ugvs", cfg.ugvs, "number of UGVs")
       ->check(CLI::Range(1, static_cast<int>(limits::kMaxUgvs)));
@@ -217,10 +217,13 @@ int run(int argc, char** argv) {
 
   sim::BoxWorld boxes;
   std::string error;
-  if (!mission::build_world(cfg, boxes, error)) {
+  std::vector<std::string> warnings;
+  if (!mission::build_world(cfg, boxes, error, &warnings)) {
     std::fprintf(stderr, "colag_world: %s\n", error.c_str());
     return 2;
   }
+  for (const std::string& w : warnings)
+    std::fprintf(stderr, "colag_world: warning: %s\n", w.c_str());
   platform::RealtimeExecutor exec(time_scale);
   sim::SimWorldConfig wc;
   wc.seed = cfg.seed;
@@ -294,6 +297,7 @@ int run(int argc, char** argv) {
     o.reach_time_s = o.reached ? monitor.reach_s_[k] : -1.0;
     o.waiting_time_s = traffic.status[k].waiting_time_s;
     o.final_mode = traffic.status[k].mode;
+    o.final_blocked = traffic.status[k].blocked_reason;
     o.support_requests = traffic.requests[k];
     reached += o.reached ? 1 : 0;
     out.ugvs.push_back(o);

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "colag/sim/world/cloud_world.hpp"
 #include "colag/sim/world/pcd_loader.hpp"
 #include "fuzz_input.hpp"
 

@@ -181,3 +181,47 @@ TEST(CollisionPredictor, ARobotAlreadyInsideTheInflationMayLeaveButNotGoCloser) 
                     p);
   EXPECT_EQ(p.kind, CollisionKind::kMap);
 }
+
+// Issue 19.5: the robot is not exactly on its trajectory (out of the path, ahead of its
+// schedule) and the controller takes that back in its own time. A wall from x = 1 m on, its
+// face at y = 0.6: on the path (y = 0.05) the robot passes 0.55 m from it; 0.33 m off the
+// path towards it, it would pass 0.22 m from it, closer than its radius: that must be predicted
+// although the trajectory's samples are clear.
+TEST(CollisionPredictor, ARobotOffItsTrajectoryIsCheckedWhereItIsNotWhereItShouldBe) {
+  auto map = std::make_unique<MapStore>();
+  ASSERT_TRUE(test::fill_map(*map, -3, -3, 13, 3, [](const Vec2& p) {
+    return p.y() > 0.6 && p.y() < 1.0 && p.x() > 1.0 && p.x() < 4.0 ? CellState::kOccupied
+                                                                    : CellState::kFree;
+  }));
+  PredictorConfig cfg;
+  cfg.horizon_m = 5.0;
+  CollisionPredictor predictor(cfg, OdometryNoise{0.0, 0.0, 0.0, 0.0});  // point ellipses
+  Prediction p;
+  predictor.predict({Vec2(0, 0.05), 0.0}, Mat3::Zero(), straight_trajectory(), 0, *map, {}, p);
+  EXPECT_EQ(p.kind, CollisionKind::kNone) << "on its path";
+  predictor.predict({Vec2(0, 0.38), 0.0}, Mat3::Zero(), straight_trajectory(), 0, *map, {}, p);
+  ASSERT_EQ(p.kind, CollisionKind::kMap) << "0.33 m off its path towards the wall";
+  EXPECT_NEAR(p.point.x(), 1.0, 0.15);  // where the wall begins
+}
+
+// Issue 19.1: already overlapping another robot's disc (its uncertainty is large: it is not
+// localised yet) is not a collision; moving away is allowed, moving closer is not.
+TEST(CollisionPredictor, InsideAnotherRobotsDiscItMayLeaveButNotGoCloser) {
+  auto map = std::make_unique<MapStore>();
+  ASSERT_TRUE(test::fill_map(*map, -6, -3, 13, 3, [](const Vec2&) { return CellState::kFree; }));
+  PredictorConfig cfg;
+  cfg.horizon_m = 3.0;
+  CollisionPredictor predictor(cfg, forward_noise_only());
+  const OtherRobot other{Vec2(-1.5, 0.05), 2.5};  // we stand 1.5 m from its centre
+  Prediction p;
+  predictor.predict({Vec2(0, 0.05), 0.0}, Mat3::Zero(), straight_trajectory(), 0, *map, {&other, 1},
+                    p);
+  EXPECT_EQ(p.kind, CollisionKind::kNone) << "driving away from it";
+  Path back;
+  (void)back.waypoints.push_back(Vec2(0.0, 0.05));
+  (void)back.waypoints.push_back(Vec2(-5.0, 0.05));
+  Trajectory towards;
+  ASSERT_TRUE(towards.build(back, 0.5, {}));
+  predictor.predict({Vec2(0, 0.05), M_PI}, Mat3::Zero(), towards, 0, *map, {&other, 1}, p);
+  EXPECT_EQ(p.kind, CollisionKind::kRobot) << "driving towards it";
+}

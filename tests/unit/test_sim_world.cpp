@@ -7,6 +7,7 @@
 #include "colag/hal/can/can_wheel_odometry.hpp"
 #include "colag/hal/scripted/scripted_devices.hpp"
 #include "colag/platform/worker_pool.hpp"
+#include "colag/sim/world/cloud_world.hpp"
 #include "colag/sim/world/pcd_loader.hpp"
 #include "colag/sim/world/sim_world.hpp"
 
@@ -27,7 +28,8 @@ TEST(PcdLoader, ReadsAsciiAndBinaryAndFindsTheBoxes) {
   ASSERT_EQ(pts.size(), 4u);
   EXPECT_FLOAT_EQ(static_cast<float>(pts[1].z()), 0.6F);
   const BoxWorld w = box_world_from_points(pts);
-  ASSERT_EQ(w.boxes.size(), 2u);  // two clusters above the ground; the ground point is ignored
+  // Three columns above the ground, each as tall as its points (the ground point is ignored).
+  ASSERT_EQ(w.boxes.size(), 3u);
   // Binary: the same records as little-endian floats.
   std::string bin = header + "binary\n";
   const float rec[4][4] = {

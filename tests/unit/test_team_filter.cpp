@@ -184,6 +184,25 @@ TEST(TeamFilter, ForgetsTheBodyMappedBeforeTheUgvWasLocated) {
   EXPECT_NE(map.state(Vec3(where.x() - 1.0, where.y(), 0.05)), VoxelState::kUnknown);
 }
 
+// Forgetting a body forgets what was hit there, not the air around it that rays crossed.
+TEST(Mapper, ForgetsWhatWasHitKeepsWhatWasSeenFree) {
+  Field f;
+  const Vec2 where(5.0, 0.0);
+  f.sim->add_ugv({where, 0.0});
+  const auto map_owner = std::make_unique<Mapper>();  // too big for the stack
+  Mapper& map = *map_owner;
+  Pose3 sensor;
+  const hal::LidarScanView s = f.scan(sensor);
+  map.insert_scan(sensor, s);
+  const Vec3 body(where.x() - 0.15, where.y(), 0.25);  // its near face, seen from the UAV
+  const Vec3 air(where.x() - 0.45, where.y(), 0.5);    // crossed by rays passing over it
+  ASSERT_EQ(map.state(body), VoxelState::kOccupied);
+  ASSERT_EQ(map.state(air), VoxelState::kFree);
+  EXPECT_GT(map.forget(where, 0.6, 0.1, 0.6), 0u);
+  EXPECT_EQ(map.state(body), VoxelState::kUnknown);
+  EXPECT_EQ(map.state(air), VoxelState::kFree);
+}
+
 // The UAV cannot see the ground under a robot; the robot standing there is proof that nothing
 // else is: the unknown cells its footprint covers are free in its own map, nothing else changes.
 TEST(MapStore, TheGroundUnderTheRobotIsFreeInItsOwnMap) {

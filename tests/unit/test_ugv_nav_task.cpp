@@ -170,7 +170,8 @@ TEST(UgvNavTask, DrivesToTheGoalThroughAKnownFreeMap) {
   EXPECT_LT(rig.world->travelled, 4.47 * 1.2);
   EXPECT_EQ(rig.drive.last().v_mps, 0.0);
   EXPECT_EQ(rig.support.requests, 0);
-  EXPECT_EQ(rig.ugv->waiting_time_s(), 0.0);
+  // Standing still is waiting, whatever the reason: only before the first relative pose here.
+  EXPECT_LE(rig.ugv->waiting_time_s(), 0.2);
   // Gaussian tails beyond the 99.9 % gate are dropped as outliers (a few in ~250 updates);
   // nothing else may be rejected.
   const UgvHealth& h = rig.ugv->health();

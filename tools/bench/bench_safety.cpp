@@ -38,8 +38,10 @@ int run_safety(const SafetyOptions& o) {
     if (o.quick && std::string(f.name) != "loss30+lat300" &&
         std::string(f.name) != "uav-blackout20s")
       continue;
-    for (const char* scen : {"sparse", "dense"}) {
-      for (int n : {3, 5, 7}) {
+    // The paper's two maps, and a field of taller, thinner pillars of several sizes.
+    for (const char* scen : {"sparse", "dense", "pillars"}) {
+      const bool pillars = std::string(scen) == "pillars";
+      for (int n : {3, 5, pillars ? 8 : 7}) {
         if (o.quick && (std::string(scen) != "dense" || n != 3)) continue;
         for (int s = 1; s <= (o.quick ? 1 : o.seeds); ++s) {
           MissionRun r;
@@ -59,7 +61,8 @@ int run_safety(const SafetyOptions& o) {
   std::ofstream csv(o.csv);
   csv << "faults,scenario,ugvs,seed,ok,all_reached,collisions,reached_ugvs,min_clearance_m,"
          "reach_time_s,waiting_time_s,max_waiting_time_s\n";
-  std::printf("\nSafety under faults (maps sparse+dense x 3/5/7 UGVs x seeds):\n");
+  std::printf(
+      "\nSafety under faults (maps sparse+dense x 3/5/7 UGVs, pillars x 3/5/8, x seeds):\n");
   std::printf("%-16s %8s %10s %12s %14s %9s %8s %8s\n", "faults", "missions", "collisions",
               "UGVs reached", "min clear. m", "reach s", "wait s", "max wait");
   int failed = 0, total_collisions = 0;

@@ -145,7 +145,8 @@ int run_tables(const TablesOptions& o) {
     std::printf(
         "\nTable I: averages per UGV over the seeds; paper in brackets. Reach = time to the goal "
         "(s),\n"
-        "wait = stopped for support (s), length (m), S.P. = self-perception baseline, ratio = "
+        "wait = stood still before the goal, any reason (s; the paper: stopped for support), "
+        "length (m), S.P. = self-perception baseline, ratio = "
         "reach / S.P. reach.\n");
     std::printf("%-7s %4s %18s %16s %17s %18s %18s %17s %6s %5s %6s\n", "map", "UGVs",
                 "reach [paper]", "wait [paper]", "UGV m [paper]", "UAV m [paper]",

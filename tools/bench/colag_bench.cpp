@@ -84,8 +84,8 @@ int run(int argc, char** argv) {
       "speed", "the real-time factor of one mission (default dense, 7 UGVs, seed 1), N runs");
   programs::SpeedOptions popt;
   speed->add_option("--runs", popt.runs, "runs, one after the other")->check(CLI::Range(1, 100));
-  speed->add_option("--scenario", popt.scenario, "sparse or dense")
-      ->check(CLI::IsMember({"sparse", "dense"}));
+  speed->add_option("--scenario", popt.scenario, "sparse, dense or pillars")
+      ->check(CLI::IsMember({"sparse", "dense", "pillars"}));
   speed->add_option("--ugvs", popt.ugvs, "UGVs")->check(CLI::Range(1, 16));
   speed->add_option("--seed", popt.seed, "seed")->check(CLI::Range(0, 2147483647));
   speed->add_option("--target", popt.target, "real-time factor the median should reach")

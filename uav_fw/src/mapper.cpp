@@ -293,7 +293,8 @@ std::size_t Mapper::forget(const Vec2& centre, double radius_m, double z_low_m, 
         if ((c.head<2>() - centre).squaredNorm() > r * r || c.z() < z_low_m || c.z() > z_high_m)
           continue;
         std::int8_t& v = logodds_[g.index({x, y, z})];
-        known += v != kUnknown ? 1U : 0U;
+        if (v == kUnknown || v <= 0) continue;  // seen free more than hit: not a body
+        ++known;
         v = kUnknown;
       }
     }

@@ -315,15 +315,21 @@ bool UavSupervisorTask::choose_target(TimePoint now, Vec2& target) {
     target = requests_[static_cast<std::size_t>(target_ugv_)].support;
     return true;
   }
-  // Nothing requested: visit the UGV not seen for the longest (keep every estimator fed).
+  // Nothing requested: visit the UGV not seen for the longest (keep every estimator fed); a
+  // blocked one only when no other needs a visit (it has said we cannot help it now).
   target_is_request_ = false;
   int best = -1;
+  const auto before = [&](const Ugv& u, const Ugv& b) {
+    const bool u_blocked = u.status.mode == msg::UgvMode::kBlocked;
+    const bool b_blocked = b.status.mode == msg::UgvMode::kBlocked;
+    return u_blocked != b_blocked ? !u_blocked : u.last_seen < b.last_seen;
+  };
   for (RobotId id = 0; id < limits::kMaxUgvs; ++id) {
     const Ugv& u = ugvs_[id];
     if (!u.known || now - u.heard > config_.status_timeout ||
         u.status.mode == msg::UgvMode::kArrived)
       continue;
-    if (best < 0 || u.last_seen < ugvs_[static_cast<std::size_t>(best)].last_seen) best = id;
+    if (best < 0 || before(u, ugvs_[static_cast<std::size_t>(best)])) best = id;
   }
   target_ugv_ = best;
   if (best < 0) return false;

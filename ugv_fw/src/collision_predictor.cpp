@@ -29,8 +29,11 @@ CollisionKind CollisionPredictor::check(const Ellipse& e, double t, const MapSto
   if (near_occupied && map.occupied_distance(e.center, kDistanceSearch_m) - a < closest_allowed_m) {
     return CollisionKind::kMap;
   }
-  for (const OtherRobot& o : others) {
-    if ((o.p + t * o.v - e.center).norm() <= a + o.radius_m) return CollisionKind::kRobot;
+  for (std::size_t k = 0; k < others.size(); ++k) {
+    const OtherRobot& o = others[k];
+    const double gap = (o.p + t * o.v - e.center).norm() - (a + o.radius_m);
+    const double floor = k < robot_floor_.size() ? std::min(robot_floor_[k], 0.0) : 0.0;
+    if (gap <= 0.0 && gap < floor - 1e-3) return CollisionKind::kRobot;
   }
   return CollisionKind::kNone;
 }
@@ -57,9 +60,21 @@ void CollisionPredictor::predict(const Pose2& pose, const Mat3& covariance, cons
   const double floor_now = map.occupied_distance(pose.p, kDistanceSearch_m) - now_e.axes().a_m;
   // Outside any occupied cell's inflation nothing changes: the floor is the inflation itself.
   const double closest_allowed = std::min(floor_now, inflation) - 1e-3;
+  robot_floor_.clear();
+  for (const OtherRobot& o : others) {
+    const double a = now_e.axes().a_m;
+    (void)robot_floor_.push_back((o.p - pose.p).norm() - (a + o.radius_m));
+  }
 
+  // The trajectory's samples are where the robot should be; it is beside its path now (by
+  // `offset` across the path's direction) and the controller takes that back in its own time:
+  // every position between the sample and the sample moved by the offset is covered (the
+  // ellipse at the midpoint, grown by half the offset). Along the path, being behind or ahead
+  // of the schedule changes when, not where: the stop threshold's margin covers that.
+  Vec2 shift = Vec2::Zero();
+  double grow = 0.0;
   const auto test = [&](const Vec2& centre, double t, double heading) {
-    const Ellipse e = sigma_ellipse(centre, P.topLeftCorner<2, 2>(), k);
+    const Ellipse e = sigma_ellipse(centre + shift, P.topLeftCorner<2, 2>(), k).grown(grow);
     (void)out.ellipses.push_back(e);
     const CollisionKind kind =
         overflow ? CollisionKind::kMap : check(e, t, map, others, closest_allowed);
@@ -76,6 +91,10 @@ void CollisionPredictor::predict(const Pose2& pose, const Mat3& covariance, cons
   const std::size_t start = std::min(progress, traj.size() - 1);
   const double t0 = traj[start].t_s;
   const Vec2 origin = traj[start].p;
+  const Vec2 along(std::cos(traj[start].yaw_rad), std::sin(traj[start].yaw_rad));
+  const Vec2 off = pose.p - origin;
+  shift = 0.5 * (off - off.dot(along) * along);
+  grow = shift.norm();
   std::size_t i = start;
   for (int step = 1; step < static_cast<int>(limits::kMaxPredictionSteps); ++step) {
     const double t = step * config_.dt_s;

@@ -27,7 +27,10 @@ bool finite_status(const msg::UgvStatus& s) {
   for (double c : s.covariance) {
     if (!std::isfinite(c)) return false;
   }
-  return static_cast<unsigned>(s.mode) <= static_cast<unsigned>(msg::UgvMode::kFault);
+  return static_cast<unsigned>(s.mode) <=
+             static_cast<unsigned>(msg::EnumRange<msg::UgvMode>::kLast) &&
+         static_cast<unsigned>(s.blocked_reason) <=
+             static_cast<unsigned>(msg::EnumRange<msg::BlockedReason>::kLast);
 }
 
 }  // namespace
@@ -47,7 +50,8 @@ UgvNavTask::UgvNavTask(const UgvNavConfig& config, platform::Transport& transpor
       planner_(config.planner),
       controller_(config.controller, config.limits),
       predictor_(config.predictor, config.ekf.noise),
-      support_(config.support) {
+      support_(config.support),
+      blocked_(config.blocked) {
   // Wheel samples are stamped by this board's clock (their order is the EKF's to check); the
   // UAV's odometry must increase (the history interpolates along it); relative poses may come
   // late and out of order within the EKF's history; each UGV's statuses must increase.
@@ -155,6 +159,8 @@ void UgvNavTask::command(TimePoint now, double v, double omega) {
 void UgvNavTask::drive(TimePoint now, double dt) {
   if (fault_) {
     mode_ = msg::UgvMode::kFault;
+  } else if (blocked_.blocked()) {
+    mode_ = msg::UgvMode::kBlocked;
   } else if (!ekf_.initialized()) {
     mode_ = msg::UgvMode::kWaitingForInit;
   } else if (arrived_) {
@@ -163,11 +169,15 @@ void UgvNavTask::drive(TimePoint now, double dt) {
     mode_ = msg::UgvMode::kWaitingForSupport;
   } else if (no_path_) {
     mode_ = msg::UgvMode::kNoPath;
+  } else if (stopped_for_robot_) {
+    mode_ = msg::UgvMode::kWaitingForRobot;
   } else {
     mode_ = msg::UgvMode::kDriving;
   }
-  if (mode_ == msg::UgvMode::kWaitingForSupport) waiting_ += seconds(dt);
-  if (mode_ != msg::UgvMode::kDriving || stopped_for_robot_ || trajectory_.empty()) {
+  blocked_reason_ = mode_ == msg::UgvMode::kBlocked ? blocked_.reason() : msg::BlockedReason::kNone;
+  if (mode_ != msg::UgvMode::kDriving || trajectory_.empty()) {
+    // Standing still before the goal is waiting, whatever the reason.
+    if (mode_ != msg::UgvMode::kArrived) waiting_ += seconds(dt);
     controller_.hold();
     command(now, 0.0, 0.0);
     return;
@@ -201,8 +211,9 @@ void UgvNavTask::planning_step(TimePoint now) {
   sum_stamp_counters();
   if (!ekf_.initialized()) {
     // Not localised yet: ask the UAV to come to where the mission plan says we are.
+    blocked_.update(now, msg::BlockedReason::kNotLocalised);
     SupportNeed need;
-    need.needed = config_.has_start_guess;
+    need.needed = config_.has_start_guess && !blocked_.blocked();
     need.collision_point = need.support_point = config_.start_guess.p;
     msg::CollisionInfo ci;
     if (support_.update(now, config_.id, need, ci) && transport_.publish(ci))
@@ -359,9 +370,19 @@ void UgvNavTask::predict_and_request(TimePoint now) {
       break;
   }
   if (was_stopped && !stopped_for_support_ && !stopped_for_robot_) replan_requested_ = true;
+  blocked_.update(now, standing_reason());
+  if (blocked_.blocked()) need = SupportNeed{};  // let the UAV serve the others for a while
   msg::CollisionInfo ci;
   if (support_.update(now, config_.id, need, ci) && transport_.publish(ci))
     ++health_.support_messages;
+}
+
+msg::BlockedReason UgvNavTask::standing_reason() const {
+  if (arrived_ || fault_) return msg::BlockedReason::kNone;  // done, or its own mode
+  if (no_path_ || trajectory_.empty()) return msg::BlockedReason::kNoPath;
+  if (stopped_for_support_) return msg::BlockedReason::kNotCleared;
+  if (stopped_for_robot_) return msg::BlockedReason::kRobotInTheWay;
+  return msg::BlockedReason::kNone;
 }
 
 void UgvNavTask::publish_status(TimePoint now) {
@@ -392,6 +413,7 @@ void UgvNavTask::publish_status(TimePoint now) {
   s.goal_m[0] = config_.goal.x();
   s.goal_m[1] = config_.goal.y();
   s.waiting_time_s = waiting_time_s();
+  s.blocked_reason = blocked_reason_;
   s.rejected_inputs = static_cast<std::uint32_t>(health_.rejected_inputs());
   s.overruns = static_cast<std::uint32_t>(health_.overruns);
   s.degradation = static_cast<std::uint8_t>(health_.degradation);

@@ -24,6 +24,10 @@ using namespace std::chrono_literals;
 
 namespace {
 
+// Moving less than this in the 100 ms between two looks is standing still (2 cm/s, 1 deg/s).
+constexpr double kStill_m = 0.002;
+constexpr double kStill_rad = 0.0017;
+
 // The faults in force at simulated time t (checked every 100 ms of the run).
 void apply_faults(const FaultConfig& fc, double t, platform::LoopbackTransport& bus) {
   if (!fc.any()) return;
@@ -187,6 +191,7 @@ struct UgvStack {
 
 // Everything a mission owns, in construction order (destroyed in reverse).
 struct Mission::Parts {
+  std::vector<std::string> warnings;  // about the map
   MissionConfig cfg;
   std::chrono::steady_clock::time_point wall_start;
   platform::MonotonicClock stopwatch;
@@ -215,10 +220,16 @@ const platform::LockstepExecutor& Mission::executor() const {
 std::unique_ptr<Mission> Mission::compose(const MissionConfig& cfg, std::string& error) {
   if (!check(cfg, error)) return nullptr;
   sim::BoxWorld boxes;
-  if (!build_world(cfg, boxes, error)) return nullptr;
+  std::vector<std::string> warnings;
+  if (!build_world(cfg, boxes, error, &warnings)) return nullptr;
+  if (cfg.warn) {
+    for (const std::string& w : warnings)
+      cfg.warn(w);
+  }
 
   auto p = std::make_unique<Parts>();
   p->cfg = cfg;
+  p->warnings = warnings;
   p->wall_start = std::chrono::steady_clock::now();
   p->ex = std::make_unique<platform::LockstepExecutor>(TimePoint{}, &p->stopwatch);
   p->bus = std::make_unique<platform::LoopbackTransport>(cfg.seed);
@@ -322,6 +333,9 @@ void Mission::fly(MissionTrace* trace) {
   const TimePoint end = time_at_seconds(cfg.max_time_s);
   int tick = 0;
   std::vector<int> open_stops(ugvs.size(), -1);  // index of each UGV's current stop in the trace
+  std::vector<Pose2> last_pose(ugvs.size());
+  for (std::size_t i = 0; i < ugvs.size(); ++i)
+    last_pose[i] = p.world->ugv(static_cast<int>(i)).pose();
   while (p.ex->now() < end) {
     apply_faults(cfg.faults, to_seconds(p.ex->now()), *p.bus);
     p.ex->run_until(p.ex->now() + 100ms);
@@ -332,16 +346,33 @@ void Mission::fly(MissionTrace* trace) {
       const ugv::UgvNavTask& task = *ugvs[i].task;
       UgvOutcome& o = p.outcomes[i];
       const sim::UgvBody& body = p.world->ugv(static_cast<int>(i));
-      if (task.mode() == msg::UgvMode::kWaitingForInit) o.init_wait_s += 0.1;
+      // Waiting as a user sees it: standing still (by the true motion) before it reached.
+      const Pose2 now_pose = body.pose();
+      const bool still = (now_pose.p - last_pose[i].p).norm() < kStill_m &&
+                         std::abs(wrap_angle(now_pose.yaw_rad - last_pose[i].yaw_rad)) < kStill_rad;
+      last_pose[i] = now_pose;
+      if (still && o.reach_time_s < 0.0 && !body.frozen()) {
+        o.waiting_time_s += 0.1;
+        if (task.mode() == msg::UgvMode::kWaitingForInit) o.init_wait_s += 0.1;
+      }
       o.final_mode = task.mode();
+      o.final_blocked = task.blocked_reason();
+      if (task.mode() == msg::UgvMode::kBlocked) {
+        o.blocked_s += 0.1;
+        o.blocked_reason = task.blocked_reason();
+      }
       if (trace != nullptr) {
-        const bool stopped = task.mode() == msg::UgvMode::kWaitingForSupport ||
-                             task.mode() == msg::UgvMode::kWaitingForInit;
-        const bool for_support = task.mode() == msg::UgvMode::kWaitingForSupport;
+        const bool stopped =
+            task.mode() != msg::UgvMode::kDriving && task.mode() != msg::UgvMode::kArrived;
         auto& open = open_stops[i];
+        if (stopped && open >= 0) {
+          const MissionTrace::Stop& s = trace->stops[static_cast<std::size_t>(open)];
+          if (s.why != task.mode() || s.blocked != task.blocked_reason()) open = -1;  // a new why
+        }
         if (stopped && open < 0) {
           open = static_cast<int>(trace->stops.size());
-          trace->stops.push_back({static_cast<int>(i), t - 0.1, t, body.pose().p, for_support});
+          trace->stops.push_back(
+              {static_cast<int>(i), t - 0.1, t, body.pose().p, task.mode(), task.blocked_reason()});
         } else if (stopped) {
           trace->stops[static_cast<std::size_t>(open)].to_s = t;
         } else {
@@ -376,6 +407,8 @@ MissionOutcome Mission::collect(MissionTrace* trace) const {
   MissionOutcome out;
   out.config = p.cfg;
   out.config.progress = nullptr;
+  out.config.warn = nullptr;
+  out.warnings = p.warnings;
   out.ugvs = p.outcomes;
   out.ugvs.resize(p.ugvs.size());
   const platform::Schedule& table = p.ex->schedule();
@@ -394,7 +427,6 @@ MissionOutcome Mission::collect(MissionTrace* trace) const {
   for (std::size_t i = 0; i < p.ugvs.size(); ++i) {
     UgvOutcome& o = out.ugvs[i];
     o.id = static_cast<int>(i);
-    o.waiting_time_s = p.ugvs[i].task->waiting_time_s();
     o.support_requests = p.support->requests[i];
     if (!o.reached) o.reach_time_s = -1.0;
   }

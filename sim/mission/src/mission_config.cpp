@@ -3,6 +3,8 @@
 #include <cstdlib>
 
 #include "colag/common/limits.hpp"
+#include "colag/sim/mission/map_checks.hpp"
+#include "colag/sim/world/cloud_world.hpp"
 #include "colag/sim/world/pcd_loader.hpp"
 
 namespace colag::mission {
@@ -85,10 +87,12 @@ bool check(const MissionConfig& cfg, std::string& error) {
   return true;
 }
 
-bool build_world(const MissionConfig& cfg, sim::BoxWorld& world, std::string& error) {
-  if (cfg.scenario == "sparse" || cfg.scenario == "dense") {
+bool build_world(const MissionConfig& cfg, sim::BoxWorld& world, std::string& error,
+                 std::vector<std::string>* warnings) {
+  if (cfg.scenario == "sparse" || cfg.scenario == "dense" || cfg.scenario == "pillars") {
     sim::MapGenConfig gen;
     gen.boxes = cfg.scenario == "sparse" ? 40 : 80;
+    gen.pillars = cfg.scenario == "pillars";  // 80 pillars, 0.2-0.5 m wide, 0.6-1.2 m tall
     gen.seed = cfg.seed;
     auto w = sim::generate_box_world(gen);
     if (!w) {
@@ -101,10 +105,20 @@ bool build_world(const MissionConfig& cfg, sim::BoxWorld& world, std::string& er
   if (cfg.scenario == "file") {
     std::vector<Vec3> points;
     if (!sim::load_pcd(cfg.map_file, points, error)) return false;
-    world = sim::box_world_from_points(points);
+    sim::CloudWorldReport report;
+    world = sim::box_world_from_points(points, {}, &report);
+    std::vector<std::string> found;
+    if (!check_map(world, report, cfg.ugvs, found, error)) {
+      error = cfg.map_file + ": " + error;
+      return false;
+    }
+    if (warnings != nullptr) {
+      for (const std::string& w : found)
+        warnings->push_back(cfg.map_file + ": " + w);
+    }
     return true;
   }
-  error = "unknown scenario '" + cfg.scenario + "' (sparse, dense, or a map file)";
+  error = "unknown scenario '" + cfg.scenario + "' (sparse, dense, pillars, or a map file)";
   return false;
 }
 

@@ -24,12 +24,16 @@ const char* doing(msg::UgvMode m) {
       return "finding no path to its goal";
     case msg::UgvMode::kFault:
       return "in a fault (motors stopped)";
+    case msg::UgvMode::kBlocked:
+      return "blocked";
+    case msg::UgvMode::kWaitingForRobot:
+      return "waiting for another UGV";
   }
   return "in an unknown mode";
 }
 
 std::string end_of(const UgvOutcome& o) {
-  char text[160];
+  char text[256];
   if (o.collided) {
     std::snprintf(text, sizeof text, "collided; %.2f m from its goal", o.goal_distance_m);
   } else if (o.reached) {
@@ -40,12 +44,27 @@ std::string end_of(const UgvOutcome& o) {
                   o.goal_distance_m);
   } else {
     std::snprintf(text, sizeof text, "%s when the mission ended, %.2f m from its goal",
-                  doing(o.final_mode), o.goal_distance_m);
+                  o.final_mode == msg::UgvMode::kBlocked
+                      ? standing_reason(o.final_mode, o.final_blocked).c_str()
+                      : doing(o.final_mode),
+                  o.goal_distance_m);
   }
-  return text;
+  std::string end = text;
+  if (!o.reached && o.blocked_s > 0.0) {
+    std::snprintf(text, sizeof text, "; blocked %.0f s in all (%s)", o.blocked_s,
+                  to_string(o.blocked_reason));
+    end += text;
+  }
+  return end;
 }
 
 }  // namespace
+
+std::string standing_reason(msg::UgvMode mode, msg::BlockedReason blocked) {
+  if (mode == msg::UgvMode::kBlocked) return std::string("blocked (") + to_string(blocked) + ")";
+  if (mode == msg::UgvMode::kWaitingForInit) return "waiting for its first relative pose";
+  return doing(mode);
+}
 
 void summarise(const sim::SimWorld& world, MissionOutcome& out) {
   double reach_sum = 0.0;
@@ -87,6 +106,7 @@ std::string to_json(const MissionOutcome& o, bool include_wall_time) {
   j["scenario"] = o.config.scenario == "file" ? o.config.map_file : o.config.scenario;
   j["ablation"] = to_string(o.config.ablation);
   j["self_perception"] = o.config.self_perception;
+  if (!o.warnings.empty()) j["warnings"] = o.warnings;
   nlohmann::ordered_json ugvs = nlohmann::ordered_json::array();
   for (const UgvOutcome& u : o.ugvs) {
     nlohmann::ordered_json ju;
@@ -97,6 +117,8 @@ std::string to_json(const MissionOutcome& o, bool include_wall_time) {
         u.reached ? nlohmann::ordered_json(u.reach_time_s) : nlohmann::ordered_json(nullptr);
     ju["waiting_time_s"] = u.waiting_time_s;
     ju["init_wait_s"] = u.init_wait_s;
+    ju["blocked_s"] = u.blocked_s;
+    if (u.blocked_s > 0.0) ju["blocked_reason"] = to_string(u.blocked_reason);
     ju["traj_length_m"] = u.traj_length_m;
     ju["min_clearance_m"] = u.min_clearance_m;
     ju["support_requests"] = u.support_requests;

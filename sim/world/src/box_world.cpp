@@ -7,10 +7,11 @@
 
 namespace colag::sim {
 
-double BoxWorld::clearance(const Vec2& p) const {
+double BoxWorld::clearance(const Vec2& p, double low, double high) const {
   double best = std::numeric_limits<double>::max();
-  for (const Box& b : boxes)
-    best = std::min(best, b.distance(p));
+  for (const Box& b : boxes) {
+    if (b.reaches(low, high)) best = std::min(best, b.distance(p));
+  }
   return best;
 }
 
@@ -42,6 +43,19 @@ Result<BoxWorld> generate_box_world(const MapGenConfig& config) {
       }
     }
     if (!ok) continue;
+    if (config.pillars) {
+      // A whole number of 0.1 m steps in [lo, hi].
+      const auto draw = [&](double lo, double hi) {
+        const auto k0 = static_cast<std::uint64_t>(std::llround(lo / 0.1));
+        const auto k1 = static_cast<std::uint64_t>(std::llround(hi / 0.1));
+        return 0.1 * static_cast<double>(k0 + rng.below(k1 - k0 + 1));
+      };
+      const double sx = draw(config.pillar_min_side_m, config.pillar_max_side_m);
+      const double sy = draw(config.pillar_min_side_m, config.pillar_max_side_m);
+      const double h = draw(config.pillar_min_height_m, config.pillar_max_height_m);
+      world.boxes.push_back({c, Vec2(sx / 2, sy / 2), h});
+      continue;
+    }
     const double side =
         rng.uniform() < config.small_fraction ? config.small_side_m : config.large_side_m;
     world.boxes.push_back({c, Vec2::Constant(side / 2), config.height_m});

@@ -14,7 +14,7 @@ BoxRay::BoxRay(const Vec3& o, const Vec3& d) : origin(o), inv_dir(Vec3::Zero()) 
 }
 
 double ray_box(const BoxRay& ray, const Box& b) {
-  const Vec3 lo(b.center.x() - b.half_size.x(), b.center.y() - b.half_size.y(), 0.0);
+  const Vec3 lo(b.center.x() - b.half_size.x(), b.center.y() - b.half_size.y(), b.base_m);
   const Vec3 hi(b.center.x() + b.half_size.x(), b.center.y() + b.half_size.y(), b.height_m);
   double t0 = 0.0, t1 = std::numeric_limits<double>::infinity();
   // Height first: most beams that miss pass above the boxes.
@@ -149,7 +149,7 @@ void LidarSimulator::scan(const BoxWorld& world, const Pose3& sensor,
         s0 = std::max(s0, std::min(sa, sb));
         s1 = std::min(s1, std::max(sa, sb));
       }
-      if (s0 <= s1) out.push_back({s0, s1, b.height_m});
+      if (s0 <= s1) out.push_back({s0, s1, b.base_m, b.height_m});
     }
   };
   // The nearest box a beam of elevation `e` hits within the column's stretches, as a distance
@@ -159,9 +159,9 @@ void LidarSimulator::scan(const BoxWorld& world, const Pose3& sensor,
     for (const Stretch& st : stretches) {
       double s0 = st.s0, s1 = st.s1;
       if (e.inv_tan == 0.0) {
-        if (p.z() < 0.0 || p.z() > st.height) continue;
+        if (p.z() < st.base || p.z() > st.height) continue;
       } else {
-        const double sa = -p.z() * e.inv_tan, sb = (st.height - p.z()) * e.inv_tan;
+        const double sa = (st.base - p.z()) * e.inv_tan, sb = (st.height - p.z()) * e.inv_tan;
         s0 = std::max(s0, std::min(sa, sb));
         s1 = std::min(s1, std::max(sa, sb));
       }

@@ -4,8 +4,6 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
-#include <map>
-#include <set>
 #include <sstream>
 
 namespace colag::sim {
@@ -187,77 +185,6 @@ bool parse_pcd(const std::string& bytes, std::vector<Vec3>& points, std::string&
     }
   }
   return true;
-}
-
-BoxWorld box_world_from_points(const std::vector<Vec3>& points, double ground_z, double res) {
-  BoxWorld world;
-  // Each 0.1 m column's highest point and the extent of its points. A point on a cell boundary
-  // (a box whose points lie on whole multiples of 0.1 m) belongs to the cell above it, within
-  // rounding: x / 0.1 may come out a hair below the whole number.
-  struct Column {
-    double top;
-    Vec2 lo, hi;
-  };
-  std::map<std::pair<long, long>, Column> columns;
-  double min_x = 1e18, max_x = -1e18, min_y = 1e18, max_y = -1e18;
-  for (const Vec3& p : points) {
-    // Far or non-finite points would overflow the column indices: parse_pcd refuses them.
-    if (!all_finite(p) || p.cwiseAbs().maxCoeff() > kMaxCoordinate_m) continue;
-    min_x = std::min(min_x, p.x());
-    max_x = std::max(max_x, p.x());
-    min_y = std::min(min_y, p.y());
-    max_y = std::max(max_y, p.y());
-    if (p.z() <= ground_z) continue;
-    const std::pair<long, long> c{std::lround(std::floor(p.x() / res + 1e-6)),
-                                  std::lround(std::floor(p.y() / res + 1e-6))};
-    const Vec2 xy = p.head<2>();
-    auto [it, inserted] = columns.try_emplace(c, Column{p.z(), xy, xy});
-    if (!inserted) {
-      it->second.top = std::max(it->second.top, p.z());
-      it->second.lo = it->second.lo.cwiseMin(xy);
-      it->second.hi = it->second.hi.cwiseMax(xy);
-    }
-  }
-  if (min_x <= max_x) {
-    world.min_x_m = min_x;
-    world.max_x_m = max_x;
-    world.min_y_m = min_y;
-    world.max_y_m = max_y;
-  }
-  std::set<std::pair<long, long>> seen;
-  for (const auto& [cell, column] : columns) {
-    if (seen.count(cell)) continue;
-    // The obstacle reaches half a point spacing past its outermost points (the points sample
-    // the centres of its surface cells).
-    Vec2 lo = column.lo, hi = column.hi;
-    double height = 0.0;
-    std::vector<std::pair<long, long>> stack{cell};
-    seen.insert(cell);
-    while (!stack.empty()) {
-      const auto c = stack.back();
-      stack.pop_back();
-      const Column& col = columns.at(c);
-      lo = lo.cwiseMin(col.lo);
-      hi = hi.cwiseMax(col.hi);
-      height = std::max(height, col.top);
-      for (long dy = -1; dy <= 1; ++dy) {
-        for (long dx = -1; dx <= 1; ++dx) {
-          const std::pair<long, long> n{c.first + dx, c.second + dy};
-          if (columns.count(n) && seen.insert(n).second) stack.push_back(n);
-        }
-      }
-    }
-    // An edge within float rounding of a cell boundary is that boundary (the paper's maps: points
-    // at cell centres, stored as floats).
-    const auto edge = [&](double v) {
-      const double k = std::round(v / res);
-      return std::abs(v / res - k) < 1e-3 ? k * res : v;
-    };
-    lo = Vec2(edge(lo.x() - res / 2), edge(lo.y() - res / 2));
-    hi = Vec2(edge(hi.x() + res / 2), edge(hi.y() + res / 2));
-    world.boxes.push_back({0.5 * (lo + hi), 0.5 * (hi - lo), height});
-  }
-  return world;
 }
 
 }  // namespace colag::sim

@@ -38,10 +38,12 @@ std::string to_pcd(const BoxWorld& world) {
     const Vec2 lo = b.center - b.half_size;
     const long nx = std::lround(2.0 * b.half_size.x() / kStep_m);
     const long ny = std::lround(2.0 * b.half_size.y() / kStep_m);
+    // Every 0.1 m from just above the ground (or from its base) up to its top.
+    const long k0 = b.base_m > 0.0 ? std::lround(std::ceil(b.base_m / kStep_m - 1e-9)) : 1;
     const long nz = std::lround(b.height_m / kStep_m);
     for (long j = 0; j < ny; ++j)
       for (long i = 0; i < nx; ++i)
-        for (long k = 1; k <= nz; ++k)
+        for (long k = k0; k <= nz; ++k)
           point(lo.x() + (static_cast<double>(i) + 0.5) * kStep_m,
                 lo.y() + (static_cast<double>(j) + 0.5) * kStep_m,
                 static_cast<double>(k) * kStep_m);

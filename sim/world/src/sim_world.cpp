@@ -164,7 +164,7 @@ void SimWorld::watch_collisions(TimePoint now) {
   for (std::size_t i = 0; i < ugvs_.size(); ++i) {
     Ugv& u = *ugvs_[i];
     const Vec2 p = u.body.pose().p;
-    const double clear = world_.clearance(p) - r;
+    const double clear = world_.clearance(p, config_.ugv.band_low_m, config_.ugv.band_high_m) - r;
     u.min_clearance = std::min(u.min_clearance, clear);
     if (clear < 0.0 && !u.collided) {
       u.collided = true;

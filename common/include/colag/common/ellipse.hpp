@@ -21,6 +21,9 @@ struct Ellipse {
   };
   Axes axes() const;
   bool contains(const Vec2& p) const;
+  // The ellipse with both semi-axes longer by m >= 0 (same centre and directions): it contains
+  // every point within m of this one.
+  Ellipse grown(double m) const;
 };
 
 // M is floored to a tiny positive definite matrix so a zero covariance is a point, not NaN.

@@ -13,13 +13,43 @@ enum class UgvMode : std::uint8_t {
   kDriving = 1,
   kWaitingForSupport = 2,  // stopped: predicted collision closer than the stop threshold
   kArrived = 3,
-  kNoPath = 4,  // the planner finds no route to the goal in the current map
-  kFault = 5,   // sensor or actuator failure: motors commanded to zero
+  kNoPath = 4,   // the planner finds no route to the goal in the current map
+  kFault = 5,    // sensor or actuator failure: motors commanded to zero
+  kBlocked = 6,  // stood still too long for `blocked_reason`: stopped asking for support, retries
+  kWaitingForRobot = 7,  // stopped: another UGV predicted closer than the robot stop time
 };
 template <>
 struct EnumRange<UgvMode> {
-  static constexpr UgvMode kLast = UgvMode::kFault;
+  static constexpr UgvMode kLast = UgvMode::kWaitingForRobot;
 };
+
+// Why a UGV stands still (what it reports with kBlocked).
+enum class BlockedReason : std::uint8_t {
+  kNone = 0,
+  kNotLocalised = 1,   // no relative pose has initialised its estimator
+  kNoPath = 2,         // no route to its goal in its map
+  kNotCleared = 3,     // a collision stays predicted: the UAV's support did not clear the way
+  kRobotInTheWay = 4,  // another UGV stays in its way
+};
+template <>
+struct EnumRange<BlockedReason> {
+  static constexpr BlockedReason kLast = BlockedReason::kRobotInTheWay;
+};
+inline const char* to_string(BlockedReason r) {
+  switch (r) {
+    case BlockedReason::kNone:
+      return "not blocked";
+    case BlockedReason::kNotLocalised:
+      return "not localised: no relative pose";
+    case BlockedReason::kNoPath:
+      return "no path to its goal";
+    case BlockedReason::kNotCleared:
+      return "support did not clear the way";
+    case BlockedReason::kRobotInTheWay:
+      return "another UGV in the way";
+  }
+  return "unknown reason";
+}
 
 // A UGV's estimated state (UGV -> UAV and the other UGVs, ~10 Hz).
 struct UgvStatus {
@@ -32,15 +62,16 @@ struct UgvStatus {
   double velocity_mps = 0.0;  // commanded forward speed
   double yaw_rate_radps = 0.0;
   double goal_m[2] = {};
-  double waiting_time_s = 0.0;        // accumulated time stopped for support
+  double waiting_time_s = 0.0;  // accumulated time standing still before arrival (any reason)
+  BlockedReason blocked_reason = BlockedReason::kNone;  // with kBlocked: why
   std::uint32_t rejected_inputs = 0;  // health: malformed or out-of-gate inputs so far
   std::uint32_t overruns = 0;         // health: task steps over their budget so far
   std::uint8_t degradation = 0;       // health: 0 = full work; > 0 = shedding work (overruns)
   friend bool operator==(const UgvStatus&, const UgvStatus&) = default;
 };
 COLAG_MESSAGE_FIELDS(UgvStatus, stamp, ugv_id, mode, position_m, yaw_rad, covariance, velocity_mps,
-                     yaw_rate_radps, goal_m, waiting_time_s, rejected_inputs, overruns,
-                     degradation);
+                     yaw_rate_radps, goal_m, waiting_time_s, blocked_reason, rejected_inputs,
+                     overruns, degradation);
 
 // Superseded by the next one 100 ms later: best effort; a UGV is expected every 500 ms.
 template <>

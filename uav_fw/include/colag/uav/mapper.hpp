@@ -78,8 +78,9 @@ class Mapper {
   // Integrates one scan taken from `sensor` (sensor frame -> world).
   void insert_scan(const Pose3& sensor, const hal::LidarScanView& scan);
   // Back to unknown: the voxels whose centres lie within `radius_m` of `centre` (horizontally)
-  // and between z_low_m and z_high_m. What was mapped there is no longer believed (a robot turned
-  // out to stand there). Returns how many voxels were known.
+  // and between z_low_m and z_high_m, and that were hit more than seen free. What was mapped
+  // there is no longer believed (a robot turned out to stand there); what was seen free stays
+  // free (it was not the robot). Returns how many voxels were forgotten.
   std::size_t forget(const Vec2& centre, double radius_m, double z_low_m, double z_high_m);
 
   const GridGeometry3d& geometry() const { return kWorldGrid3d; }

@@ -71,7 +71,8 @@ class CollisionPredictor {
 
  private:
   // Which obstacle, if any, the ellipse touches: a blocked cell not in excused_ that is near
-  // unknown, or near occupied with the ellipse closer than `closest_allowed_m` to it.
+  // unknown, or near occupied with the ellipse closer than `closest_allowed_m` to it; or another
+  // robot's disc, entered (or, already overlapping now, entered deeper than now).
   CollisionKind check(const Ellipse& e, double t, const MapStore& map,
                       std::span<const OtherRobot> others, double closest_allowed_m) const;
 
@@ -82,6 +83,9 @@ class CollisionPredictor {
   double horizon_scale_ = 1.0;
   // Blocked cells under the current ellipse (ascending indices): touching them is not news.
   StaticVector<std::uint32_t, kMaxExcused> excused_;
+  // Per other robot: how far the ellipse now is outside its disc (< 0: overlapping already).
+  // As with the map, an overlap that is there now is not news: getting deeper is.
+  StaticVector<double, limits::kMaxUgvs> robot_floor_;
 };
 
 }  // namespace colag::ugv

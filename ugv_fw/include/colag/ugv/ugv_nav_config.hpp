@@ -6,6 +6,7 @@
 #include "colag/common/time.hpp"
 #include "colag/common/ugv_ekf.hpp"
 #include "colag/msg/robot_id.hpp"
+#include "colag/ugv/blocked_watch.hpp"
 #include "colag/ugv/collision_predictor.hpp"
 #include "colag/ugv/controller.hpp"
 #include "colag/ugv/support_protocol.hpp"
@@ -32,6 +33,7 @@ struct UgvNavConfig {
   ControllerConfig controller;
   PredictorConfig predictor;
   SupportConfig support;
+  BlockedConfig blocked;
 
   double stop_time_s = 0.4;        // t_c: stop when a collision is predicted sooner
   double resume_margin_s = 0.2;    // hysteresis before driving on

@@ -14,6 +14,7 @@
 #include "colag/hal/drive.hpp"
 #include "colag/hal/wheel_odometry.hpp"
 #include "colag/platform/readers.hpp"
+#include "colag/ugv/blocked_watch.hpp"
 #include "colag/ugv/rpe_measurement.hpp"
 #include "colag/ugv/ugv_nav_config.hpp"
 
@@ -64,7 +65,8 @@ class UgvNavTask {
   const Trajectory& trajectory() const { return trajectory_; }
   const Prediction& prediction() const { return prediction_; }
   const UgvHealth& health() const { return health_; }
-  double waiting_time_s() const { return to_seconds(waiting_); }
+  double waiting_time_s() const { return to_seconds(waiting_); }  // stood still before arrival
+  msg::BlockedReason blocked_reason() const { return blocked_reason_; }  // with kBlocked
   bool requesting_support() const { return support_.requesting(); }
   const UgvNavConfig& config() const { return config_; }
 
@@ -98,6 +100,7 @@ class UgvNavTask {
     return {config_.max_future_skew, config_.max_message_age, increasing};
   }
   void sum_stamp_counters();
+  msg::BlockedReason standing_reason() const;
   void command(TimePoint now, double v, double omega);
 
   UgvNavConfig config_;
@@ -127,11 +130,13 @@ class UgvNavTask {
   CollisionPredictor predictor_;
   Prediction prediction_;
   SupportProtocol support_;
+  BlockedWatch blocked_;
   std::array<OtherUgv, limits::kMaxUgvs> others_{};
   StaticVector<OtherRobot, limits::kMaxUgvs> others_predict_;
   StaticVector<DiscObstacle, limits::kMaxUgvs> others_plan_;
 
   msg::UgvMode mode_ = msg::UgvMode::kWaitingForInit;
+  msg::BlockedReason blocked_reason_ = msg::BlockedReason::kNone;  // set with mode_
   bool fault_ = false;
   bool stopped_for_support_ = false;
   bool stopped_for_robot_ = false;

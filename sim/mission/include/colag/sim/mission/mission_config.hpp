@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "colag/common/geometry.hpp"
 #include "colag/sim/world/box_world.hpp"
@@ -54,6 +55,7 @@ struct MissionConfig {
   int threads = 2;  // cores the simulation may use (1..8); the results do not depend on it
   FaultConfig faults;
   std::function<void(double fraction)> progress;  // called every simulated second (optional)
+  std::function<void(const std::string&)> warn;   // each warning about the map (optional)
 };
 
 // False with `error` naming the option when a value is out of range.
@@ -64,7 +66,9 @@ bool check(const MissionConfig& cfg, std::string& error);
 Pose2 ugv_start(int i);
 Vec2 ugv_goal(int i);
 Vec3 uav_start();
-// The scenario's obstacles: generated from the seed (sparse / dense) or loaded (file).
-bool build_world(const MissionConfig& cfg, sim::BoxWorld& world, std::string& error);
+// The scenario's obstacles: generated from the seed (sparse / dense) or loaded (file: checked
+// against the layout, see map_checks.hpp; what it warns about is added to `warnings`).
+bool build_world(const MissionConfig& cfg, sim::BoxWorld& world, std::string& error,
+                 std::vector<std::string>* warnings = nullptr);
 
 }  // namespace colag::mission

@@ -18,13 +18,18 @@ struct UgvOutcome {
   int id = 0;
   bool reached = false;
   bool collided = false;
-  double reach_time_s = -1.0;   // -1 when it did not reach
-  double waiting_time_s = 0.0;  // stopped because t_pc < t_c (the paper's waiting time)
-  double init_wait_s = 0.0;     // stopped before the first relative pose (not in the paper)
+  double reach_time_s = -1.0;  // -1 when it did not reach
+  // Standing still before it reached (true motion under 2 cm/s and 1 deg/s), whatever the
+  // reason: the paper counts only stops for t_pc < t_c; a user counts every one.
+  double waiting_time_s = 0.0;
+  double init_wait_s = 0.0;  // the part of it before the first relative pose
   double traj_length_m = 0.0;
   double min_clearance_m = 0.0;  // closest approach of its footprint to an obstacle or UGV
   std::uint64_t support_requests = 0;
-  msg::UgvMode final_mode = msg::UgvMode::kWaitingForInit;  // what it reported last
+  msg::UgvMode final_mode = msg::UgvMode::kWaitingForInit;       // what it reported last
+  msg::BlockedReason final_blocked = msg::BlockedReason::kNone;  // with final_mode kBlocked
+  double blocked_s = 0.0;  // time it reported kBlocked (it gave up asking for support)
+  msg::BlockedReason blocked_reason = msg::BlockedReason::kNone;  // the last time it was
   double goal_distance_m = 0.0;  // where it ended, from its goal (true position)
   std::string end;               // how it ended, in words (summarise)
 };
@@ -39,7 +44,8 @@ struct TaskTime {
 
 struct MissionOutcome {
   MissionConfig config;
-  std::vector<TaskTime> task_times;  // in table order of first appearance
+  std::vector<std::string> warnings;  // about the map (see map_checks.hpp)
+  std::vector<TaskTime> task_times;   // in table order of first appearance
   std::vector<UgvOutcome> ugvs;
   // Averages per UGV, as in the paper (reach time over the UGVs that reached).
   double reach_time_s = 0.0;
@@ -86,12 +92,16 @@ struct MissionTrace {
     int ugv;
     double from_s, to_s;
     Vec2 where;
-    bool for_support;  // waiting for the UAV (t_pc < t_c); otherwise before the first RPE
+    msg::UgvMode why;  // the mode it reported (never kDriving nor kArrived)
+    msg::BlockedReason blocked;
   };
   std::vector<Stop> stops;
   std::vector<Vec2> collisions;
   std::vector<Vec2> unknown_cells;  // ground cells the UAV never saw (0.1 m), at the end
 };
+
+// Why a UGV stands, in words ("waiting for support", "blocked: no path to its goal").
+std::string standing_reason(msg::UgvMode mode, msg::BlockedReason blocked);
 
 // Completes an outcome whose UGVs have their id, reached, reach time, waiting time, support
 // requests and final mode set: the ground truth from `world` (path length, clearance,

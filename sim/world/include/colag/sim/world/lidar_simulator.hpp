@@ -55,7 +55,7 @@ class LidarSimulator {
   };
   std::vector<LevelBeam> level_beams_;  // per beam, for the scan being cast (level sensor)
   struct Stretch {  // where a column's horizontal line crosses a box's footprint
-    double s0, s1, height;
+    double s0, s1, base, height;
   };
   // The last scan, in column order; every buffer holds a whole turn (sized at construction).
   std::vector<hal::LidarPoint> points_, misses_;

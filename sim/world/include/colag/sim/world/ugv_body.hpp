@@ -15,6 +15,11 @@ namespace colag::sim {
 struct UgvBodyConfig {
   double radius_m = 0.25;
   double height_m = 0.3;  // the body's top (the AprilTag lies on it): what sensors see of it
+  // What counts as touching an obstacle: one reaching into the firmware's body band (lower
+  // clutter is driven over, higher obstacles passed under). The band is the one the UAV maps
+  // and the UGV keeps clear, a little above the body's top: a conservative collision test.
+  double band_low_m = 0.1;
+  double band_high_m = 0.7;
   hal::can::WheelProtocolConfig protocol;
   hal::can::WheelGeometry geometry;
   double wheel_accel_mps2 = 1.0;
