@@ -32,9 +32,12 @@ Result<BoxWorld> generate_box_world(const MapGenConfig& config) {
   const std::size_t max_attempts = 10000 * (config.boxes + 1);
   for (std::size_t attempt = 0; attempt < max_attempts && world.boxes.size() < config.boxes;
        ++attempt) {
-    // Centres on the 0.1 m grid, as in the paper's maps.
-    const Vec2 c(-config.arena_half_m + 0.1 * static_cast<double>(rng.below(grid_steps)),
-                 -config.arena_half_m + 0.1 * static_cast<double>(rng.below(grid_steps)));
+    // Centres on the 0.1 m grid, as in the paper's maps. Two statements: the order in which a
+    // constructor's arguments are evaluated is unspecified (GCC drew y first on x86-64 and x
+    // first on aarch64: the same seed gave another map on a board). y first, as the shipped maps.
+    const double ky = static_cast<double>(rng.below(grid_steps));
+    const double kx = static_cast<double>(rng.below(grid_steps));
+    const Vec2 c(-config.arena_half_m + 0.1 * kx, -config.arena_half_m + 0.1 * ky);
     bool ok = true;
     for (const Box& b : world.boxes) {
       if ((b.center - c).norm() < config.min_center_distance_m) {

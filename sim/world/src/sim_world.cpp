@@ -148,9 +148,12 @@ void SimWorld::detect(TimePoint now) {
     hal::RelativePoseDetection d;
     d.stamp = now;
     d.ugv_id = static_cast<RobotId>(i);
-    d.ugv_in_uav.p =
-        truth.p + Vec3(rng_.gaussian(0, c.sigma_position_m), rng_.gaussian(0, c.sigma_position_m),
-                       rng_.gaussian(0, c.sigma_position_m));
+    // One draw per statement: the order of a constructor's arguments is unspecified (GCC takes
+    // them last to first on x86-64, first to last on aarch64). z, y, x: as the seeds have flown.
+    const double nz = rng_.gaussian(0, c.sigma_position_m);
+    const double ny = rng_.gaussian(0, c.sigma_position_m);
+    const double nx = rng_.gaussian(0, c.sigma_position_m);
+    d.ugv_in_uav.p = truth.p + Vec3(nx, ny, nz);
     d.ugv_in_uav.q = (truth.q * quat_from_yaw(rng_.gaussian(0, c.sigma_yaw_rad))).normalized();
     const double sp = c.sigma_position_m * c.sigma_position_m;
     d.covariance = Eigen::Vector4d(sp, sp, sp, c.sigma_yaw_rad * c.sigma_yaw_rad).asDiagonal();
