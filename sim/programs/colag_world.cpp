@@ -297,7 +297,7 @@ int run(int argc, char** argv) {
     o.reach_time_s = o.reached ? monitor.reach_s_[k] : -1.0;
     o.waiting_time_s = traffic.status[k].waiting_time_s;
     o.final_mode = traffic.status[k].mode;
-    o.final_blocked = traffic.status[k].blocked_reason;
+    if (o.final_mode == msg::UgvMode::kBlocked) o.blocked_reason = traffic.status[k].blocked_reason;
     o.support_requests = traffic.requests[k];
     reached += o.reached ? 1 : 0;
     out.ugvs.push_back(o);

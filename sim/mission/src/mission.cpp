@@ -356,7 +356,6 @@ void Mission::fly(MissionTrace* trace) {
         if (task.mode() == msg::UgvMode::kWaitingForInit) o.init_wait_s += 0.1;
       }
       o.final_mode = task.mode();
-      o.final_blocked = task.blocked_reason();
       if (task.mode() == msg::UgvMode::kBlocked) {
         o.blocked_s += 0.1;
         o.blocked_reason = task.blocked_reason();

@@ -45,7 +45,7 @@ std::string end_of(const UgvOutcome& o) {
   } else {
     std::snprintf(text, sizeof text, "%s when the mission ended, %.2f m from its goal",
                   o.final_mode == msg::UgvMode::kBlocked
-                      ? standing_reason(o.final_mode, o.final_blocked).c_str()
+                      ? standing_reason(o.final_mode, o.blocked_reason).c_str()
                       : doing(o.final_mode),
                   o.goal_distance_m);
   }

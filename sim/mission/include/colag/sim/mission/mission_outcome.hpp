@@ -26,10 +26,10 @@ struct UgvOutcome {
   double traj_length_m = 0.0;
   double min_clearance_m = 0.0;  // closest approach of its footprint to an obstacle or UGV
   std::uint64_t support_requests = 0;
-  msg::UgvMode final_mode = msg::UgvMode::kWaitingForInit;       // what it reported last
-  msg::BlockedReason final_blocked = msg::BlockedReason::kNone;  // with final_mode kBlocked
+  msg::UgvMode final_mode = msg::UgvMode::kWaitingForInit;  // what it reported last
   double blocked_s = 0.0;  // time it reported kBlocked (it gave up asking for support)
-  msg::BlockedReason blocked_reason = msg::BlockedReason::kNone;  // the last time it was
+  // Why, the last time it was blocked (with final_mode kBlocked: why it is now).
+  msg::BlockedReason blocked_reason = msg::BlockedReason::kNone;
   double goal_distance_m = 0.0;  // where it ended, from its goal (true position)
   std::string end;               // how it ended, in words (summarise)
 };
