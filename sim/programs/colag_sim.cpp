@@ -8,7 +8,9 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <tuple>
 
@@ -22,15 +24,19 @@ using namespace colag;
 namespace {
 
 void print_table(const mission::MissionOutcome& o) {
-  std::printf("\n%-4s %-8s %-9s %10s %10s %10s %10s %11s %9s\n", "ugv", "reached", "collided",
-              "reach_s", "waiting_s", "init_s", "length_m", "clearance_m", "requests");
+  // stopped_s: the truth; then the firmware's account of why, in parts (see ugv/waiting.hpp).
+  std::printf("\n%-4s %-8s %-9s %8s %9s %7s %7s %7s %7s %7s %7s %8s %8s %6s %8s\n", "ugv",
+              "reached", "collided", "reach_s", "stopped_s", "support", "ugv", "path", "start",
+              "fault", "manoeuv", "length_m", "clear_m", "nees", "requests");
   for (const auto& u : o.ugvs) {
     char reach[32];
     std::snprintf(reach, sizeof reach, u.reached ? "%.2f" : "-", u.reach_time_s);
-    std::printf("%-4d %-8s %-9s %10s %10.2f %10.2f %10.2f %11.2f %9llu\n", u.id,
-                u.reached ? "yes" : "NO", u.collided ? "YES" : "no", reach, u.waiting_time_s,
-                u.init_wait_s, u.traj_length_m, u.min_clearance_m,
-                static_cast<unsigned long long>(u.support_requests));
+    const auto& w = u.waiting_parts;
+    std::printf(
+        "%-4d %-8s %-9s %8s %9.2f %7.1f %7.1f %7.1f %7.1f %7.1f %7.1f %8.2f %8.2f %6.1f %8llu\n",
+        u.id, u.reached ? "yes" : "NO", u.collided ? "YES" : "no", reach, u.stopped_s, w[0], w[1],
+        w[2], w[3], w[4], w[5], u.traj_length_m, u.min_clearance_m, u.nees_mean,
+        static_cast<unsigned long long>(u.support_requests));
   }
   std::printf("\nsummary (averages per UGV, as in the paper)\n");
   if (o.reach_time_s >= 0.0) {
@@ -38,8 +44,12 @@ void print_table(const mission::MissionOutcome& o) {
   } else {
     std::printf("  UGV reach time           - (none reached)\n");
   }
-  std::printf("  UGV waiting time    %8.2f s (max %.2f s)\n", o.waiting_time_s,
-              o.max_waiting_time_s);
+  if (o.reach_missing > 0 && o.reach_time_s >= 0.0)
+    std::printf("  (reach time over %d UGVs: %d did not reach)\n",
+                static_cast<int>(o.ugvs.size()) - o.reach_missing, o.reach_missing);
+  std::printf("  UGV waiting time    %8.2f s (max %.2f s; stood still before its goal)\n",
+              o.waiting_time_s, o.max_waiting_time_s);
+  std::printf("  estimator NEES      %8.2f (3 when its covariance is honest)\n", o.nees_mean);
   std::printf("  UGV traj. length    %8.2f m\n", o.ugv_traj_length_m);
   std::printf("  UAV traj. length    %8.2f m\n", o.uav_traj_length_m);
   std::printf("  collisions          %8d\n", o.collisions);
@@ -106,6 +116,19 @@ int run(int argc, char** argv) {
   faults->add_option("--rpe-blackout", rpe_blackout, "T0:T1 s: no relative poses");
   faults->add_option("--odom-bias", odom_bias_pct, "wheel-encoder scale error, %")
       ->check(CLI::Range(-49.0, 49.0));
+  // Clocks: every robot keeps its own (fleet time is the UAV's; the UGVs learn it over DDS).
+  std::string clock_step;
+  auto* clocks = app.add_option_group("clocks", "each robot's own clock");
+  clocks
+      ->add_option("--clock-offset-s", cfg.clocks.offset_s,
+                   "each UGV's clock reads up to this many seconds more or less than the UAV's")
+      ->check(CLI::Range(0.0, 1e6));
+  clocks
+      ->add_option("--clock-drift-ppm", cfg.clocks.drift_ppm,
+                   "each robot's clock runs up to this fast or slow (crystals: 10-50 ppm)")
+      ->check(CLI::Range(0.0, 1000.0));
+  clocks->add_option("--clock-step", clock_step,
+                     "T:S: at mission time T s the UAV's clock jumps by S s (S may be negative)");
   app.add_option("--json", json_path, "write the metrics as JSON to this file");
   app.add_option("--png", png_path, "draw the mission into this PNG file");
   std::string save_map;
@@ -134,6 +157,23 @@ int run(int argc, char** argv) {
                    name, text.c_str());
       return 2;
     }
+  }
+
+  if (!clock_step.empty()) {
+    const auto colon = clock_step.find(':');
+    char* end = nullptr;
+    const double at = std::strtod(clock_step.c_str(), &end);
+    const bool at_ok = colon != std::string::npos && end == clock_step.c_str() + colon;
+    const double by = at_ok ? std::strtod(clock_step.c_str() + colon + 1, &end) : 0.0;
+    if (!at_ok || *end != '\0' || !(at >= 0.0) || !std::isfinite(by) ||
+        colon + 1 == clock_step.size()) {
+      std::fprintf(stderr,
+                   "colag_sim: --clock-step: expected T:S in seconds with T >= 0, got '%s'\n",
+                   clock_step.c_str());
+      return 2;
+    }
+    cfg.clocks.step_at_s = at;
+    cfg.clocks.step_s = by;
   }
 
   if (!save_map.empty()) {

@@ -85,18 +85,20 @@ TEST_F(ScheduleTables, TheLockstepMissionRunsEachRobotFromItsTableInItsLane) {
   ASSERT_TRUE(m) << error;
   const ugv::UgvSchedule ugv_table;
   const uav::UavSchedule uav_table;
-  // The simulation's own rows (the shared network, the world) and then the robots'.
+  // The simulation's own rows (the shared network, the world, the ground truth's watch of who
+  // stands still) and then the robots'.
   const std::vector<Row> rows = rows_of(m->executor().schedule());
-  ASSERT_EQ(rows.size(), 2u + 4u + 2u * 2u);
+  ASSERT_EQ(rows.size(), 3u + 4u + 2u * 2u);
   EXPECT_EQ(rows[0].name, "transport");
   EXPECT_EQ(rows[1].name, "world");
-  expect_row(rows[2], "uav_control", uav_table.control, 0);
-  expect_row(rows[3], "uav_mapping", uav_table.mapping, 0);
-  expect_row(rows[4], "uav_sharing", uav_table.sharing, 0);
-  expect_row(rows[5], "uav_scheduling", uav_table.scheduling, 0);
+  EXPECT_EQ(rows[2].name, "still_watch");
+  expect_row(rows[3], "uav_control", uav_table.control, 0);
+  expect_row(rows[4], "uav_mapping", uav_table.mapping, 0);
+  expect_row(rows[5], "uav_sharing", uav_table.sharing, 0);
+  expect_row(rows[6], "uav_scheduling", uav_table.scheduling, 0);
   for (int i = 0; i < 2; ++i) {
-    expect_row(rows[6 + 2 * i], "ugv_control", ugv_table.control, i + 1);
-    expect_row(rows[7 + 2 * i], "ugv_planning", ugv_table.planning, i + 1);
+    expect_row(rows[7 + 2 * i], "ugv_control", ugv_table.control, i + 1);
+    expect_row(rows[8 + 2 * i], "ugv_planning", ugv_table.planning, i + 1);
   }
 }
 

@@ -2,6 +2,9 @@
 // each). What the paper's system must do, and what its ablation must fail to do.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <nlohmann/json.hpp>
+
 #include "colag/sim/mission/mission.hpp"
 
 using namespace colag;
@@ -56,6 +59,20 @@ TEST(Mission, DenseFiveUgvsAllReachWithoutCollision) {
   expect_all_reached_safely(o);
   EXPECT_GT(o.uav_traj_length_m, 20.0);
   EXPECT_GT(o.schedules, 0u);
+  for (const UgvOutcome& u : o.ugvs) {
+    // The firmware's account of its stops adds up, and matches the truth to a few control
+    // periods per stop (its wheel odometry lags the wheels by one CAN period).
+    double parts = 0.0;
+    for (double p : u.waiting_parts)
+      parts += p;
+    EXPECT_NEAR(parts, u.waiting_time_s, 1e-6) << "UGV " << u.id;
+    EXPECT_NEAR(u.waiting_time_s, u.stopped_s, 0.1 * (u.stops + 1)) << "UGV " << u.id;
+    EXPECT_GT(u.stops, 0) << "UGV " << u.id;  // it did wait for the UAV at least at start
+    // Its covariance is honest in the world whose noise it models (3 dof: 3 expected).
+    EXPECT_GT(u.nees_samples, 100u) << "UGV " << u.id;
+    EXPECT_GT(u.nees_mean, 1.0) << "UGV " << u.id;
+    EXPECT_LT(u.nees_mean, 6.0) << "UGV " << u.id;
+  }
 }
 
 TEST(Mission, WithoutRelativePoseUpdatesTheBlindUgvsDoNotMakeIt) {
@@ -194,4 +211,45 @@ TEST(Mission, AUgvShortOfItsGoalSaysWhereAndWhy) {
   EXPECT_GT(o.ugvs[0].goal_distance_m, 20.0);
   EXPECT_NE(o.ugvs[0].end.find("when the mission ended"), std::string::npos) << o.ugvs[0].end;
   EXPECT_EQ(exit_code(o), 1);
+}
+
+// Every board keeps its own clock. Clocks an hour apart change nothing: the UGVs learn fleet time
+// (the UAV's) before they publish or fuse anything, so the mission is the same, bit for bit.
+TEST(Mission, ClocksAnHourApartFlyTheSameMissionAsOneClock) {
+  MissionConfig cfg;
+  cfg.scenario = "dense";
+  cfg.ugvs = 3;
+  cfg.seed = 4;
+  cfg.max_time_s = 60;
+  auto one = nlohmann::json::parse(to_json(run(cfg), false));
+  cfg.clocks.offset_s = 3600.0;
+  auto apart = nlohmann::json::parse(to_json(run(cfg), false));
+  for (auto& u : apart["ugvs"]) {
+    EXPECT_GE(u["clock_error_s"].get<double>(), 0.0);  // synchronised at the end
+    EXPECT_LT(u["clock_error_s"].get<double>(), 0.05);
+    u.erase("clock_steps");
+    u.erase("clock_error_s");
+  }
+  apart.erase("clocks");
+  EXPECT_EQ(one.dump(), apart.dump());
+}
+
+// Crystals 50 ppm apart, and the UAV's clock jumps back 5 s mid-mission: the UGVs notice within a
+// few exchanges, follow it, and nobody collides or stays behind.
+TEST(Mission, DriftingClocksAndAStepOfTheUavsClockKeepEveryoneSafe) {
+  MissionConfig cfg;
+  cfg.scenario = "dense";
+  cfg.ugvs = 4;
+  cfg.seed = 5;
+  cfg.max_time_s = 250;
+  cfg.clocks.offset_s = 3600.0;
+  cfg.clocks.drift_ppm = 50.0;
+  cfg.clocks.step_at_s = 30.0;
+  cfg.clocks.step_s = -5.0;
+  const MissionOutcome o = run(cfg);
+  expect_all_reached_safely(o);
+  for (const UgvOutcome& u : o.ugvs) {
+    EXPECT_EQ(u.clock_steps, 1u) << "UGV " << u.id;
+    EXPECT_GE(u.clock_error_s, 0.0) << "UGV " << u.id;
+  }
 }

@@ -73,6 +73,7 @@ Status UavSupervisorTask::init(TimePoint now) {
   if (initialised_) return Status::ok();
   if (Status s = requests_in_.attach(transport_); !s) return s;
   if (Status s = statuses_in_.attach(transport_); !s) return s;
+  if (Status s = clock_server_.attach(transport_, config_.id); !s) return s;
   last_control_ = now;
   initialised_ = true;
   return Status::ok();
@@ -84,6 +85,7 @@ Status UavSupervisorTask::init(TimePoint now) {
 void UavSupervisorTask::control_step(TimePoint now) {
   const double dt = std::clamp(to_seconds(now - last_control_), 1e-3, 0.1);
   last_control_ = now;
+  clock_server_.step(now);
   hal::UavState s;
   while (odometry_.poll(s)) {
     if (!all_finite(s.pose.p) || !s.pose.q.coeffs().allFinite() || !all_finite(s.velocity_mps) ||

@@ -45,6 +45,7 @@ UgvNavTask::UgvNavTask(const UgvNavConfig& config, platform::Transport& transpor
                     &UgvNavTask::on_overrun),
       planning_loop_(*this, "ugv_planning", &UgvNavTask::init, &UgvNavTask::planning_step,
                      &UgvNavTask::on_overrun),
+      fleet_(config.fleet_clock),
       ekf_(config.ekf),
       map_(config.map),
       planner_(config.planner),
@@ -69,6 +70,7 @@ Status UgvNavTask::init(TimePoint now) {
   if (Status s = rpe_in_.attach(transport_, config_.id); !s) return s;
   if (Status s = patches_in_.attach(transport_, config_.id); !s) return s;
   if (Status s = statuses_in_.attach(transport_); !s) return s;
+  if (Status s = fleet_.attach(transport_, config_.id); !s) return s;
   started_ = last_control_ = now;
   last_plan_ = kNever;
   initialised_ = true;
@@ -81,9 +83,18 @@ Status UgvNavTask::init(TimePoint now) {
 void UgvNavTask::control_step(TimePoint now) {
   const double dt = std::clamp(to_seconds(now - last_control_), 0.0, 0.1);
   last_control_ = now;
+  fleet_.step(now);
   read_odometry(now);
   read_relative_poses(now);
   drive(now, dt);
+  // Standing still before the goal is waiting, whatever the reason (see waiting.hpp): by the
+  // wheels, which brake and pull away as the robot does (the command leads them).
+  if (!arrived_ && (std::abs(wheel_speed_) < kStillSpeed_mps || fault_)) {
+    const WaitPart part = wait_part(mode_, blocked_reason_, health_.plans > health_.plan_failures,
+                                    !trajectory_.empty());
+    waiting_ += seconds(dt);
+    waiting_parts_[static_cast<std::size_t>(part)] += seconds(dt);
+  }
 }
 
 void UgvNavTask::read_odometry(TimePoint now) {
@@ -92,7 +103,10 @@ void UgvNavTask::read_odometry(TimePoint now) {
     if (!StampGate::passed(wheel_stamps_.check(s.stamp, now)) ||
         !ekf_.predict(s.stamp, s.v_mps, s.omega_radps)) {
       ++health_.odometry_rejected;
+      continue;
     }
+    wheel_speed_ = s.v_mps;
+    wheel_omega_ = s.omega_radps;
   }
   // Watchdog: a blind robot without odometry does not know where it is going.
   const TimePoint last = odometry_.last_sample_time();
@@ -103,8 +117,16 @@ void UgvNavTask::read_odometry(TimePoint now) {
 }
 
 void UgvNavTask::read_relative_poses(TimePoint now) {
+  // Matching a relative pose to the UAV's odometry and to our odometry history needs their stamps
+  // on our clock: nothing is fused before fleet time is known.
+  const bool synchronised = fleet_.synchronised(now);
   msg::UavOdometry od;
   while (uav_odometry_in_.pop(od)) {
+    if (!synchronised) {
+      ++health_.unsynchronised;
+      continue;
+    }
+    od.stamp = fleet_.to_local(od.stamp);
     // A sample from the future would otherwise become the history's newest and lock out every
     // genuine one after it; a UAV whose clock went back starts a new history.
     const StampGate::Verdict v = uav_odometry_stamps_.check(od.stamp, now);
@@ -113,6 +135,11 @@ void UgvNavTask::read_relative_poses(TimePoint now) {
   }
   msg::RelativePose rpe;
   while (rpe_in_.pop(rpe)) {
+    if (!synchronised) {
+      ++health_.unsynchronised;
+      continue;
+    }
+    rpe.stamp = fleet_.to_local(rpe.stamp);
     if (rpe.ugv_id != config_.id || !StampGate::passed(rpe_stamps_.check(rpe.stamp, now))) {
       ++health_.rpe_rejected;
       continue;
@@ -122,11 +149,19 @@ void UgvNavTask::read_relative_poses(TimePoint now) {
       ++health_.rpe_unmatched;
       continue;
     }
-    const Result<PoseMeasurement> z = world_measurement(rpe, uav);
+    Result<PoseMeasurement> z = world_measurement(rpe, uav);
     if (!z) {
       ++health_.rpe_rejected;
       continue;
     }
+    // Its stamp on our clock is only as good as fleet time: what we drove in that much time is
+    // added to its uncertainty (the bound taken as a uniform error's half-width).
+    const double st = fleet_.error_s(now) / std::sqrt(3.0);
+    const double yaw = ekf_.pose().yaw_rad;
+    const Vec2 h(std::cos(yaw), std::sin(yaw));
+    z.value().covariance.topLeftCorner<2, 2>() +=
+        (wheel_speed_ * st) * (wheel_speed_ * st) * h * h.transpose();
+    z.value().covariance(2, 2) += (wheel_omega_ * st) * (wheel_omega_ * st);
     if (ekf_.initialized() && !config_.use_rpe_updates) {
       ++health_.rpe_ignored;
       continue;
@@ -177,7 +212,7 @@ void UgvNavTask::drive(TimePoint now, double dt) {
   blocked_reason_ = mode_ == msg::UgvMode::kBlocked ? blocked_.reason() : msg::BlockedReason::kNone;
   if (mode_ != msg::UgvMode::kDriving || trajectory_.empty()) {
     // Standing still before the goal is waiting, whatever the reason.
-    if (mode_ != msg::UgvMode::kArrived) waiting_ += seconds(dt);
+
     controller_.hold();
     command(now, 0.0, 0.0);
     return;
@@ -209,6 +244,11 @@ void UgvNavTask::planning_step(TimePoint now) {
   read_map_patches(now);
   read_other_ugvs(now);
   sum_stamp_counters();
+  if (!fleet_.has_estimate()) {
+    // Nothing we would publish can be stamped in fleet time yet: wait for the first exchange.
+    blocked_.update(now, msg::BlockedReason::kNotLocalised);
+    return;
+  }
   if (!ekf_.initialized()) {
     // Not localised yet: ask the UAV to come to where the mission plan says we are.
     blocked_.update(now, msg::BlockedReason::kNotLocalised);
@@ -216,8 +256,7 @@ void UgvNavTask::planning_step(TimePoint now) {
     need.needed = config_.has_start_guess && !blocked_.blocked();
     need.collision_point = need.support_point = config_.start_guess.p;
     msg::CollisionInfo ci;
-    if (support_.update(now, config_.id, need, ci) && transport_.publish(ci))
-      ++health_.support_messages;
+    if (support_.update(now, config_.id, need, ci)) publish_request(ci);
     publish_status(now);
     return;
   }
@@ -246,6 +285,7 @@ void UgvNavTask::sum_stamp_counters() {
 void UgvNavTask::read_map_patches(TimePoint now) {
   msg::MapPatch patch;
   while (patches_in_.pop(patch)) {
+    patch.stamp = fleet_.to_local(patch.stamp);
     if (patch.ugv_id != config_.id || !StampGate::passed(patch_stamps_.check(patch.stamp, now)) ||
         !map_.apply(patch)) {
       ++health_.patches_rejected;
@@ -267,6 +307,7 @@ void UgvNavTask::read_other_ugvs(TimePoint now) {
   msg::UgvStatus s;
   while (statuses_in_.pop(s)) {
     if (s.ugv_id == config_.id) continue;  // our own, echoed back
+    s.stamp = fleet_.to_local(s.stamp);
     if (s.ugv_id >= limits::kMaxUgvs || !finite_status(s)) {
       ++health_.statuses_rejected;
       continue;
@@ -373,8 +414,7 @@ void UgvNavTask::predict_and_request(TimePoint now) {
   blocked_.update(now, standing_reason());
   if (blocked_.blocked()) need = SupportNeed{};  // let the UAV serve the others for a while
   msg::CollisionInfo ci;
-  if (support_.update(now, config_.id, need, ci) && transport_.publish(ci))
-    ++health_.support_messages;
+  if (support_.update(now, config_.id, need, ci)) publish_request(ci);
 }
 
 msg::BlockedReason UgvNavTask::standing_reason() const {
@@ -385,9 +425,14 @@ msg::BlockedReason UgvNavTask::standing_reason() const {
   return msg::BlockedReason::kNone;
 }
 
+void UgvNavTask::publish_request(msg::CollisionInfo& ci) {
+  ci.stamp = fleet_.to_fleet(ci.stamp);
+  if (transport_.publish(ci)) ++health_.support_messages;
+}
+
 void UgvNavTask::publish_status(TimePoint now) {
   msg::UgvStatus s;
-  s.stamp = now;
+  s.stamp = fleet_.to_fleet(now);
   s.ugv_id = config_.id;
   s.mode = mode_;
   if (ekf_.initialized()) {
@@ -414,6 +459,7 @@ void UgvNavTask::publish_status(TimePoint now) {
   s.goal_m[1] = config_.goal.y();
   s.waiting_time_s = waiting_time_s();
   s.blocked_reason = blocked_reason_;
+  s.clock_error_s = fleet_.error_s(now);
   s.rejected_inputs = static_cast<std::uint32_t>(health_.rejected_inputs());
   s.overruns = static_cast<std::uint32_t>(health_.overruns);
   s.degradation = static_cast<std::uint8_t>(health_.degradation);

@@ -12,6 +12,7 @@
 #include "colag/platform/monotonic_clock.hpp"
 #include "colag/platform/worker_pool.hpp"
 #include "colag/sim/world/sim_world.hpp"
+#include "colag/uav/clock_server.hpp"
 #include "colag/uav/map_sharer.hpp"
 #include "colag/uav/mapper.hpp"
 #include "colag/uav/team_filter.hpp"
@@ -23,10 +24,6 @@ namespace colag::mission {
 using namespace std::chrono_literals;
 
 namespace {
-
-// Moving less than this in the 100 ms between two looks is standing still (2 cm/s, 1 deg/s).
-constexpr double kStill_m = 0.002;
-constexpr double kStill_rad = 0.0017;
 
 // The faults in force at simulated time t (checked every 100 ms of the run).
 void apply_faults(const FaultConfig& fc, double t, platform::LoopbackTransport& bus) {
@@ -67,7 +64,9 @@ class ReferenceFrameTask final : public platform::Task {
  public:
   explicit ReferenceFrameTask(platform::Transport& t) : transport_(t) {}
   const char* name() const override { return "reference"; }
+  Status init(TimePoint) override { return clock_.attach(transport_, 0); }
   void step(TimePoint now) override {
+    clock_.step(now);  // the UGVs' fleet time is this stand-in's clock
     msg::UavOdometry od;
     od.stamp = now;
     (void)transport_.publish(od);
@@ -75,6 +74,7 @@ class ReferenceFrameTask final : public platform::Task {
 
  private:
   platform::Transport& transport_;
+  uav::ClockServer clock_;
 };
 
 class SelfPerceptionTask final : public platform::Task {
@@ -126,6 +126,38 @@ class SelfPerceptionTask final : public platform::Task {
   uav::TeamFilter team_;
   uav::MapSharer sharer_;
 };
+
+// A robot's loop on the robot's own clock: the executor releases it on the world's time, the loop
+// sees its board's time (as it would on the board).
+class OnRobotClock final : public platform::Task {
+ public:
+  OnRobotClock(platform::Task& inner, const sim::ClockModel& clock)
+      : inner_(inner), clock_(clock) {}
+  const char* name() const override { return inner_.name(); }
+  Status init(TimePoint now) override { return inner_.init(clock_.local(now)); }
+  void step(TimePoint now) override { inner_.step(clock_.local(now)); }
+  void on_overrun(Duration d) override { inner_.on_overrun(d); }
+
+ private:
+  platform::Task& inner_;
+  sim::ClockModel clock_;
+};
+
+// Each robot's clock: the UAV's first, then one per UGV (see ClockConfig).
+std::vector<sim::ClockModel> draw_clocks(const MissionConfig& cfg) {
+  const ClockConfig& c = cfg.clocks;
+  std::vector<sim::ClockModel> out(static_cast<std::size_t>(cfg.ugvs) + 1);
+  if (!c.any()) return out;
+  Rng rng(cfg.seed * 0x9E3779B97F4A7C15ULL + 0xC10C);  // its own stream: the rest is unchanged
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const double base = rng.uniform(-c.offset_s, c.offset_s);
+    out[i].offset_s = i == 0 ? c.offset_s : c.offset_s + base;
+    out[i].drift_ppm = rng.uniform(-c.drift_ppm, c.drift_ppm);
+  }
+  out[0].step_at_s = c.step_at_s;
+  out[0].step_s = c.step_s;
+  return out;
+}
 
 // After the UGV lanes ran: their samples go onto the bus in lane order, as if the UGVs' tasks
 // had run one after the other.
@@ -187,6 +219,36 @@ struct UgvStack {
   Vec2 goal;
 };
 
+// The ground truth of standing still, every world step: each UGV slower than 0.05 m/s before
+// its firmware says it arrived (collided ones included: they stand).
+class StillWatch final : public platform::Task {
+ public:
+  StillWatch(const sim::SimWorld& world, const std::vector<UgvStack>& ugvs)
+      : stopped_s(ugvs.size(), 0.0),
+        stops(ugvs.size(), 0),
+        world_(world),
+        ugvs_(ugvs),
+        still_(ugvs.size(), false) {}
+  const char* name() const override { return "still_watch"; }
+  void step(TimePoint) override {
+    for (std::size_t i = 0; i < ugvs_.size(); ++i) {
+      const bool arrived = ugvs_[i].task->mode() == msg::UgvMode::kArrived;
+      const bool still =
+          !arrived && std::abs(world_.ugv(static_cast<int>(i)).speed_mps()) < ugv::kStillSpeed_mps;
+      if (still) stopped_s[i] += 0.02;
+      if (still && !still_[i]) ++stops[i];
+      still_[i] = still;
+    }
+  }
+  std::vector<double> stopped_s;
+  std::vector<int> stops;
+
+ private:
+  const sim::SimWorld& world_;
+  const std::vector<UgvStack>& ugvs_;
+  std::vector<bool> still_;
+};
+
 }  // namespace
 
 // Everything a mission owns, in construction order (destroyed in reverse).
@@ -200,10 +262,13 @@ struct Mission::Parts {
   std::unique_ptr<platform::WorkerPool> pool;
   std::unique_ptr<sim::SimWorld> world;
   std::unique_ptr<WorldTask> world_task;
+  std::unique_ptr<StillWatch> still;
   std::unique_ptr<platform::TransportPump> pump;
   std::unique_ptr<uav::UavSupervisorTask> uav;
   std::unique_ptr<ReferenceFrameTask> reference;
   std::vector<UgvStack> ugvs;
+  std::vector<sim::ClockModel> clocks;  // the UAV's, then each UGV's
+  std::vector<std::unique_ptr<OnRobotClock>> on_clocks;
   FlushOutboxes flush;
   std::unique_ptr<SupportLog> support;
   // What fly() found, for collect().
@@ -233,6 +298,7 @@ std::unique_ptr<Mission> Mission::compose(const MissionConfig& cfg, std::string&
   p->wall_start = std::chrono::steady_clock::now();
   p->ex = std::make_unique<platform::LockstepExecutor>(TimePoint{}, &p->stopwatch);
   p->bus = std::make_unique<platform::LoopbackTransport>(cfg.seed);
+  p->clocks = draw_clocks(cfg);
   sim::SimWorldConfig wc;
   wc.seed = cfg.seed;
   wc.lidar.columns = cfg.lidar_columns;
@@ -247,7 +313,7 @@ std::unique_ptr<Mission> Mission::compose(const MissionConfig& cfg, std::string&
 
   // The UAV (not in the self-perception baseline).
   if (!cfg.self_perception) {
-    p->world->add_uav(uav_start());
+    p->world->add_uav(uav_start(), p->clocks[0]);
     uav::UavSupervisorConfig uc;
     if (cfg.ablation == Ablation::kNoScheduling)
       uc.scheduler.mode = uav::ScheduleMode::kNoScheduling;
@@ -264,7 +330,7 @@ std::unique_ptr<Mission> Mission::compose(const MissionConfig& cfg, std::string&
   // tasks are a lane of the executor, the UGVs' lanes run side by side on the worker pool.
   p->ugvs.resize(static_cast<std::size_t>(cfg.ugvs));
   for (int i = 0; i < cfg.ugvs; ++i) {
-    p->world->add_ugv(ugv_start(i));
+    p->world->add_ugv(ugv_start(i), p->clocks[static_cast<std::size_t>(i) + 1]);
   }
   if (cfg.self_perception) p->world->enable_ugv_lidars();
   for (int i = 0; i < cfg.ugvs; ++i) {
@@ -296,13 +362,29 @@ std::unique_ptr<Mission> Mission::compose(const MissionConfig& cfg, std::string&
   // lane. The UGVs plan at the same instants (each has its own computer: nothing keeps their
   // loops apart, and the firmware must be safe when they line up), so the lanes plan side by
   // side.
-  if (p->uav && st) st = p->ex->add(p->uav->rows());
-  if (p->reference && st) st = p->ex->add({p->reference.get(), 20ms, 1ms});
+  // Each on its robot's clock (the self-perception baseline's stand-ins: the UAV's).
+  const auto on_clock = [&p](platform::TaskEntry e, const sim::ClockModel& clock) {
+    if (clock.identity()) return e;
+    p->on_clocks.push_back(std::make_unique<OnRobotClock>(*e.task, clock));
+    e.task = p->on_clocks.back().get();
+    return e;
+  };
+  const auto add_rows = [&](auto rows, const sim::ClockModel& clock) {
+    Status added = Status::ok();
+    for (const platform::TaskEntry& e : rows)
+      if (added) added = p->ex->add(on_clock(e, clock));
+    return added;
+  };
+  p->still = std::make_unique<StillWatch>(*p->world, p->ugvs);
+  if (st) st = p->ex->add({p->still.get(), 20ms, 1ms});
+  if (p->uav && st) st = add_rows(p->uav->rows(), p->clocks[0]);
+  if (p->reference && st) st = p->ex->add(on_clock({p->reference.get(), 20ms, 1ms}, p->clocks[0]));
   for (int i = 0; i < cfg.ugvs && st; ++i) {
     UgvStack& s = p->ugvs[static_cast<std::size_t>(i)];
     const int lane = i + 1;
-    st = p->ex->add(s.task->rows(lane));
-    if (st && s.perception) st = p->ex->add({s.perception.get(), 50ms, 10ms, Duration{}, lane});
+    st = add_rows(s.task->rows(lane), p->clocks[static_cast<std::size_t>(i) + 1]);
+    if (st && s.perception)
+      st = p->ex->add(on_clock({s.perception.get(), 50ms, 10ms, Duration{}, lane}, p->clocks[0]));
   }
   p->support = std::make_unique<SupportLog>(cfg.ugvs);
   if (st) st = p->bus->subscribe(msg::topic_of<msg::CollisionInfo>, kAnyRobot, *p->support);
@@ -333,9 +415,6 @@ void Mission::fly(MissionTrace* trace) {
   const TimePoint end = time_at_seconds(cfg.max_time_s);
   int tick = 0;
   std::vector<int> open_stops(ugvs.size(), -1);  // index of each UGV's current stop in the trace
-  std::vector<Pose2> last_pose(ugvs.size());
-  for (std::size_t i = 0; i < ugvs.size(); ++i)
-    last_pose[i] = p.world->ugv(static_cast<int>(i)).pose();
   while (p.ex->now() < end) {
     apply_faults(cfg.faults, to_seconds(p.ex->now()), *p.bus);
     p.ex->run_until(p.ex->now() + 100ms);
@@ -348,14 +427,26 @@ void Mission::fly(MissionTrace* trace) {
       const sim::UgvBody& body = p.world->ugv(static_cast<int>(i));
       // Waiting as a user sees it: standing still (by the true motion) before it reached.
       const Pose2 now_pose = body.pose();
-      const bool still = (now_pose.p - last_pose[i].p).norm() < kStill_m &&
-                         std::abs(wrap_angle(now_pose.yaw_rad - last_pose[i].yaw_rad)) < kStill_rad;
-      last_pose[i] = now_pose;
-      if (still && o.reach_time_s < 0.0 && !body.frozen()) {
-        o.waiting_time_s += 0.1;
-        if (task.mode() == msg::UgvMode::kWaitingForInit) o.init_wait_s += 0.1;
+      o.stopped_s = p.still->stopped_s[i];
+      o.stops = p.still->stops[i];
+      // How honest its covariance is: NEES of (x, y, yaw) against the truth.
+      const UgvEkf& ekf = task.estimator();
+      if (ekf.initialized() && task.mode() != msg::UgvMode::kArrived && !body.frozen()) {
+        Vec3 e;
+        e.head<2>() = ekf.pose().p - now_pose.p;
+        e.z() = wrap_angle(ekf.pose().yaw_rad - now_pose.yaw_rad);
+        const double nees = e.dot(ekf.covariance().ldlt().solve(e));
+        if (std::isfinite(nees)) {
+          ++o.nees_samples;
+          o.nees_mean += (nees - o.nees_mean) / static_cast<double>(o.nees_samples);
+        }
       }
       o.final_mode = task.mode();
+      o.clock_steps = task.fleet_clock().filter().counters().steps;
+      o.clock_error_s = task.fleet_clock().error_s(task.now());
+      o.waiting_time_s = task.waiting_time_s();
+      for (std::size_t k = 0; k < ugv::kWaitParts; ++k)
+        o.waiting_parts[k] = to_seconds(task.waiting_parts()[k]);
       if (task.mode() == msg::UgvMode::kBlocked) {
         o.blocked_s += 0.1;
         o.blocked_reason = task.blocked_reason();

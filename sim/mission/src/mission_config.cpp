@@ -1,5 +1,7 @@
 #include "colag/sim/mission/mission_config.hpp"
 
+#include <cmath>
+
 #include <cstdlib>
 
 #include "colag/common/limits.hpp"
@@ -84,6 +86,15 @@ bool check(const MissionConfig& cfg, std::string& error) {
     return fail("--latency-ms and --jitter-ms must be in 0..10000");
   if (!(fc.odom_bias > -0.5 && fc.odom_bias < 0.5))
     return fail("--odom-bias must be in (-50, 50) %");
+  const ClockConfig& cc = cfg.clocks;
+  if (!(cc.offset_s >= 0.0 && cc.offset_s <= 1e6))
+    return fail("--clock-offset-s must be in 0..1e6 s");
+  if (!(cc.drift_ppm >= 0.0 && cc.drift_ppm <= 1000.0))
+    return fail("--clock-drift-ppm must be in 0..1000");
+  if (!(std::isfinite(cc.step_at_s) && std::isfinite(cc.step_s) && std::abs(cc.step_s) <= 1e6))
+    return fail("--clock-step must be T:S with |S| <= 1e6 s");
+  if (cc.step_at_s >= 0.0 && cc.offset_s + cc.step_s < 0.0)
+    return fail("--clock-step: the UAV's clock would read negative (raise --clock-offset-s)");
   return true;
 }
 

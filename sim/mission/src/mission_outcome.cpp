@@ -80,12 +80,14 @@ void summarise(const sim::SimWorld& world, MissionOutcome& out) {
       reach_sum += o.reach_time_s;
       ++reached;
     }
-    out.waiting_time_s += o.waiting_time_s / n;
-    out.max_waiting_time_s = std::max(out.max_waiting_time_s, o.waiting_time_s);
+    out.waiting_time_s += o.stopped_s / n;
+    out.max_waiting_time_s = std::max(out.max_waiting_time_s, o.stopped_s);
+    out.nees_mean += o.nees_mean / n;
     out.ugv_traj_length_m += o.traj_length_m / n;
     o.end = end_of(o);
   }
   out.reach_time_s = reached > 0 ? reach_sum / reached : -1.0;
+  out.reach_missing = static_cast<int>(out.ugvs.size()) - reached;
   out.all_reached = reached == static_cast<int>(out.ugvs.size());
   out.collisions = static_cast<int>(world.collisions().size());
 }
@@ -103,6 +105,11 @@ std::string to_json(const MissionOutcome& o, bool include_wall_time) {
                    {"rpe_blackout_s", {f.rpe_blackout.from_s, f.rpe_blackout.to_s}},
                    {"odom_bias", f.odom_bias}};
   }
+  if (o.config.clocks.any()) {
+    const ClockConfig& c = o.config.clocks;
+    j["clocks"] = {{"offset_s", c.offset_s}, {"drift_ppm", c.drift_ppm}};
+    if (c.step_at_s >= 0.0) j["clocks"]["uav_step"] = {{"at_s", c.step_at_s}, {"by_s", c.step_s}};
+  }
   j["scenario"] = o.config.scenario == "file" ? o.config.map_file : o.config.scenario;
   j["ablation"] = to_string(o.config.ablation);
   j["self_perception"] = o.config.self_perception;
@@ -115,8 +122,18 @@ std::string to_json(const MissionOutcome& o, bool include_wall_time) {
     ju["collided"] = u.collided;
     ju["reach_time_s"] =
         u.reached ? nlohmann::ordered_json(u.reach_time_s) : nlohmann::ordered_json(nullptr);
+    ju["stopped_s"] = u.stopped_s;
+    ju["stops"] = u.stops;
     ju["waiting_time_s"] = u.waiting_time_s;
-    ju["init_wait_s"] = u.init_wait_s;
+    nlohmann::ordered_json parts;
+    for (std::size_t k = 0; k < ugv::kWaitParts; ++k)
+      parts[ugv::to_string(static_cast<ugv::WaitPart>(k))] = u.waiting_parts[k];
+    ju["waiting_parts"] = parts;
+    ju["nees_mean"] = u.nees_mean;
+    if (o.config.clocks.any()) {
+      ju["clock_steps"] = u.clock_steps;
+      ju["clock_error_s"] = u.clock_error_s;
+    }
     ju["blocked_s"] = u.blocked_s;
     if (u.blocked_s > 0.0) ju["blocked_reason"] = to_string(u.blocked_reason);
     ju["traj_length_m"] = u.traj_length_m;
@@ -130,10 +147,12 @@ std::string to_json(const MissionOutcome& o, bool include_wall_time) {
   nlohmann::ordered_json s;
   s["reach_time_s"] = o.reach_time_s >= 0.0 ? nlohmann::ordered_json(o.reach_time_s)
                                             : nlohmann::ordered_json(nullptr);
+  s["reach_missing"] = o.reach_missing;
   s["waiting_time_s"] = o.waiting_time_s;
   s["max_waiting_time_s"] = o.max_waiting_time_s;
   s["ugv_traj_length_m"] = o.ugv_traj_length_m;
   s["uav_traj_length_m"] = o.uav_traj_length_m;
+  s["nees_mean"] = o.nees_mean;
   s["collisions"] = o.collisions;
   s["all_reached"] = o.all_reached;
   j["summary"] = s;

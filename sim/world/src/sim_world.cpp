@@ -43,9 +43,11 @@ class SimWorld::Camera final : public hal::RelativePoseSensor {
 };
 
 struct SimWorld::Ugv {
-  Ugv(const UgvBodyConfig& c, const Pose2& start, std::uint64_t seed, const hal::Clock& clock)
-      : body(c, start, seed), link(clock) {}
+  Ugv(const UgvBodyConfig& c, const Pose2& start, std::uint64_t seed, const hal::Clock& world,
+      const ClockModel& model)
+      : body(c, start, seed), clock(world, model), link(clock) {}
   UgvBody body;
+  RobotClock clock;  // the UGV's: its CAN bus, motor controller and firmware run on it
   hal::sim::SimCanLink link;
   std::unique_ptr<ScanDevice> lidar;
   double min_clearance = std::numeric_limits<double>::infinity();
@@ -66,15 +68,16 @@ SimWorld::SimWorld(const SimWorldConfig& config, BoxWorld world, const hal::Cloc
 
 SimWorld::~SimWorld() = default;
 
-int SimWorld::add_ugv(const Pose2& start) {
+int SimWorld::add_ugv(const Pose2& start, const ClockModel& clock) {
   const auto seed = config_.seed * 1000003ULL + ugvs_.size() + 1;
-  ugvs_.push_back(std::make_unique<Ugv>(config_.ugv, start, seed, clock_));
+  ugvs_.push_back(std::make_unique<Ugv>(config_.ugv, start, seed, clock_, clock));
   scene_.boxes.emplace_back();  // its body, placed by update_scene
   update_scene();
   return static_cast<int>(ugvs_.size()) - 1;
 }
 
-void SimWorld::add_uav(const Vec3& start) {
+void SimWorld::add_uav(const Vec3& start, const ClockModel& clock) {
+  uav_clock_ = clock;
   uav_ = std::make_unique<UavBody>(config_.uav, start);
   uav_lidar_ = std::make_unique<ScanDevice>(config_.lidar, fork_join_);
 }
@@ -191,13 +194,14 @@ void SimWorld::watch_collisions(TimePoint now) {
 
 void SimWorld::step(TimePoint now, double dt) {
   for (auto& u : ugvs_)
-    u->body.step(now, dt, u->link.motor());
-  if (uav_) uav_->step(now, dt);
+    u->body.step(u->clock.now(), dt, u->link.motor());
+  const TimePoint uav_now = uav_clock_.local(now);  // what the UAV's devices stamp with
+  if (uav_) uav_->step(uav_now, dt);
   watch_collisions(now);
   if (now >= next_scan_) {
     next_scan_ = now + config_.lidar_period;
     update_scene();
-    if (uav_) uav_lidar_->scan(scene_, uav_->state().pose, now);
+    if (uav_) uav_lidar_->scan(scene_, uav_->state().pose, uav_now);
     for (auto& u : ugvs_) {
       if (!u->lidar) continue;
       const Pose2& g = u->body.pose();
@@ -209,7 +213,7 @@ void SimWorld::step(TimePoint now, double dt) {
   if (uav_ && now >= next_frame_) {
     next_frame_ = now + config_.camera.period;
     update_scene();
-    detect(now);
+    detect(uav_now);
   }
 }
 

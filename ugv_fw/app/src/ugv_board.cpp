@@ -50,7 +50,8 @@ bool UgvBoard::start(std::string& error) {
   dds_cfg.domain_id = cfg.common.dds_domain;
   dds_cfg.partition = cfg.common.dds_partition.c_str();
   dds_cfg.security = cfg.common.dds_security;
-  dds_cfg.publish_only<msg::UgvStatus, msg::CollisionInfo>();  // what a UGV sends
+  dds_cfg
+      .publish_only<msg::UgvStatus, msg::CollisionInfo, msg::ClockRequest>();  // what a UGV sends
   if (const Status s = dds_.init(dds_cfg); !s) {
     error = std::string("DDS: ") + s.message();
     (void)stop_motors();

@@ -10,6 +10,7 @@
 #include <type_traits>
 
 #include "colag/common/time.hpp"
+#include "colag/msg/clock_sync.hpp"
 #include "colag/msg/collision_info.hpp"
 #include "colag/msg/map_patch.hpp"
 #include "colag/msg/relative_pose.hpp"
@@ -20,8 +21,8 @@
 namespace colag::msg {
 
 // Every message that crosses between robots, in topic order.
-using Messages =
-    std::tuple<UavOdometry, RelativePose, MapPatch, CollisionInfo, UgvStatus, SupportPlan>;
+using Messages = std::tuple<UavOdometry, RelativePose, MapPatch, CollisionInfo, UgvStatus,
+                            SupportPlan, ClockRequest, ClockReply>;
 
 inline constexpr std::size_t kTopicCount = std::tuple_size_v<Messages>;
 

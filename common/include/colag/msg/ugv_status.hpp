@@ -64,14 +64,15 @@ struct UgvStatus {
   double goal_m[2] = {};
   double waiting_time_s = 0.0;  // accumulated time standing still before arrival (any reason)
   BlockedReason blocked_reason = BlockedReason::kNone;  // with kBlocked: why
+  double clock_error_s = -1.0;        // how far its fleet time may be off; < 0: not synchronised
   std::uint32_t rejected_inputs = 0;  // health: malformed or out-of-gate inputs so far
   std::uint32_t overruns = 0;         // health: task steps over their budget so far
   std::uint8_t degradation = 0;       // health: 0 = full work; > 0 = shedding work (overruns)
   friend bool operator==(const UgvStatus&, const UgvStatus&) = default;
 };
 COLAG_MESSAGE_FIELDS(UgvStatus, stamp, ugv_id, mode, position_m, yaw_rad, covariance, velocity_mps,
-                     yaw_rate_radps, goal_m, waiting_time_s, blocked_reason, rejected_inputs,
-                     overruns, degradation);
+                     yaw_rate_radps, goal_m, waiting_time_s, blocked_reason, clock_error_s,
+                     rejected_inputs, overruns, degradation);
 
 // Superseded by the next one 100 ms later: best effort; a UGV is expected every 500 ms.
 template <>

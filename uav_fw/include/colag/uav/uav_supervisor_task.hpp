@@ -19,6 +19,7 @@
 #include "colag/hal/relative_pose_sensor.hpp"
 #include "colag/msg/support_plan.hpp"
 #include "colag/platform/readers.hpp"
+#include "colag/uav/clock_server.hpp"
 #include "colag/uav/flight_planner.hpp"
 #include "colag/uav/map_sharer.hpp"
 #include "colag/uav/mapper.hpp"
@@ -107,6 +108,7 @@ class UavSupervisorTask {
   UavMode mode() const { return mode_; }
   const FlightPlanner& flight() const { return flight_; }
   const UavHealth& health() const { return health_; }
+  const ClockServer& clock_server() const { return clock_server_; }
   const UavSupervisorConfig& config() const { return config_; }
 
  private:
@@ -157,6 +159,7 @@ class UavSupervisorTask {
   StampGate odometry_stamps_, camera_stamps_;
   std::array<StampGate, limits::kMaxUgvs> request_stamps_{}, status_stamps_{};
 
+  ClockServer clock_server_;
   hal::UavState state_;
   bool have_state_ = false;
   TimePoint last_control_{};

@@ -9,6 +9,7 @@
 #include "colag/ugv/blocked_watch.hpp"
 #include "colag/ugv/collision_predictor.hpp"
 #include "colag/ugv/controller.hpp"
+#include "colag/ugv/fleet_clock.hpp"
 #include "colag/ugv/support_protocol.hpp"
 #include "colag/ugv/trajectory.hpp"
 #include "colag/ugv/ugv_schedule.hpp"
@@ -34,6 +35,7 @@ struct UgvNavConfig {
   PredictorConfig predictor;
   SupportConfig support;
   BlockedConfig blocked;
+  FleetClockConfig fleet_clock;
 
   double stop_time_s = 0.4;        // t_c: stop when a collision is predicted sooner
   double resume_margin_s = 0.2;    // hysteresis before driving on

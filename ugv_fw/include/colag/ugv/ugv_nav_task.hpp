@@ -15,18 +15,21 @@
 #include "colag/hal/wheel_odometry.hpp"
 #include "colag/platform/readers.hpp"
 #include "colag/ugv/blocked_watch.hpp"
+#include "colag/ugv/fleet_clock.hpp"
 #include "colag/ugv/rpe_measurement.hpp"
 #include "colag/ugv/ugv_nav_config.hpp"
+#include "colag/ugv/waiting.hpp"
 
 namespace colag::ugv {
 
 struct UgvHealth {
   std::uint64_t odometry_rejected = 0;
   std::uint64_t uav_odometry_rejected = 0;
-  std::uint64_t rpe_rejected = 0;   // malformed, wrong robot, too old / from the future
-  std::uint64_t rpe_unmatched = 0;  // no UAV odometry within the tolerance of its stamp
-  std::uint64_t rpe_outliers = 0;   // outside the EKF gate
-  std::uint64_t rpe_ignored = 0;    // ablation no-rpe: used only to initialise
+  std::uint64_t rpe_rejected = 0;    // malformed, wrong robot, too old / from the future
+  std::uint64_t rpe_unmatched = 0;   // no UAV odometry within the tolerance of its stamp
+  std::uint64_t rpe_outliers = 0;    // outside the EKF gate
+  std::uint64_t rpe_ignored = 0;     // ablation no-rpe: used only to initialise
+  std::uint64_t unsynchronised = 0;  // UAV odometry / relative poses refused: no fleet time yet
   std::uint64_t patches_rejected = 0;
   std::uint64_t statuses_rejected = 0;
   std::uint64_t drive_errors = 0;
@@ -65,7 +68,10 @@ class UgvNavTask {
   const Trajectory& trajectory() const { return trajectory_; }
   const Prediction& prediction() const { return prediction_; }
   const UgvHealth& health() const { return health_; }
+  const FleetClock& fleet_clock() const { return fleet_; }
+  TimePoint now() const { return last_control_; }  // its clock, at its last control step
   double waiting_time_s() const { return to_seconds(waiting_); }  // stood still before arrival
+  const WaitingParts& waiting_parts() const { return waiting_parts_; }   // summing to it
   msg::BlockedReason blocked_reason() const { return blocked_reason_; }  // with kBlocked
   bool requesting_support() const { return support_.requesting(); }
   const UgvNavConfig& config() const { return config_; }
@@ -95,6 +101,7 @@ class UgvNavTask {
   void replan(TimePoint now);
   void predict_and_request(TimePoint now);
   void publish_status(TimePoint now);
+  void publish_request(msg::CollisionInfo& ci);  // stamped in fleet time
 
   StampLimits stamp_limits(bool increasing) const {
     return {config_.max_future_skew, config_.max_message_age, increasing};
@@ -120,6 +127,7 @@ class UgvNavTask {
   StampGate wheel_stamps_, uav_odometry_stamps_, rpe_stamps_, patch_stamps_;
   std::array<StampGate, limits::kMaxUgvs> status_stamps_{};
 
+  FleetClock fleet_;
   UgvEkf ekf_;
   UavOdometryHistory uav_history_;
   MapStore map_;
@@ -149,8 +157,11 @@ class UgvNavTask {
   TimePoint last_control_{};
   TimePoint last_plan_{};
   Duration waiting_{};
+  WaitingParts waiting_parts_{};
   double cross_track_m_ = 0.0;
   double v_cmd_ = 0.0;
+  double wheel_speed_ = 0.0;  // the newest wheel odometry's twist
+  double wheel_omega_ = 0.0;
   double omega_cmd_ = 0.0;
   UgvHealth health_;
   OverrunGovernor governor_;

@@ -40,6 +40,17 @@ struct FaultConfig {
   }
 };
 
+// Every robot has its own clock (as boards do). The UAV's is fleet time; each UGV's reads
+// offset_s + U(-offset_s, offset_s) more than the UAV's at the start (so none reads negative), and
+// each robot's crystal runs U(-drift_ppm, drift_ppm) fast. Optionally the UAV's clock steps once.
+struct ClockConfig {
+  double offset_s = 0.0;
+  double drift_ppm = 0.0;
+  double step_at_s = -1.0;  // mission time of the UAV clock's step; < 0: none
+  double step_s = 0.0;
+  bool any() const { return offset_s != 0.0 || drift_ppm != 0.0 || step_at_s >= 0.0; }
+};
+
 struct MissionConfig {
   std::string scenario = "dense";  // "sparse" (40 boxes), "dense" (80 boxes), or "file"
   std::string map_file;            // PCD, when scenario == "file"
@@ -54,6 +65,7 @@ struct MissionConfig {
   double predict_horizon_m = 2.0;  // UGV collision-prediction horizon (straight-line distance)
   int threads = 2;  // cores the simulation may use (1..8); the results do not depend on it
   FaultConfig faults;
+  ClockConfig clocks;
   std::function<void(double fraction)> progress;  // called every simulated second (optional)
   std::function<void(const std::string&)> warn;   // each warning about the map (optional)
 };

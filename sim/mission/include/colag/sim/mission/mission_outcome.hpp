@@ -1,12 +1,14 @@
 #pragma once
 // What a simulated mission yields: the metrics as the paper defines them (Sec. V-A), per UGV
 // and averaged, the host time of each task, and what the mission figure draws.
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "colag/msg/ugv_status.hpp"
 #include "colag/sim/mission/mission_config.hpp"
+#include "colag/ugv/waiting.hpp"
 
 namespace colag::sim {
 class SimWorld;
@@ -19,10 +21,24 @@ struct UgvOutcome {
   bool reached = false;
   bool collided = false;
   double reach_time_s = -1.0;  // -1 when it did not reach
-  // Standing still before it reached (true motion under 2 cm/s and 1 deg/s), whatever the
-  // reason: the paper counts only stops for t_pc < t_c; a user counts every one.
+  // Standing still before it reached, by the ground truth (under 0.05 m/s), whatever the reason:
+  // the paper counts only stops for t_pc < t_c; a user counts every one.
+  double stopped_s = 0.0;
+  int stops = 0;  // times it came to a stand
+  // The firmware's own account of its stops: the parts (support, other_ugv, no_path, startup,
+  // fault; see ugv/waiting.hpp) and their sum. It should match stopped_s to about a control
+  // period per stop (the robot brakes and starts within one).
   double waiting_time_s = 0.0;
-  double init_wait_s = 0.0;  // the part of it before the first relative pose
+  std::array<double, ugv::kWaitParts> waiting_parts{};
+  // Mean normalised estimation error squared of its (x, y, yaw) estimate against the truth,
+  // sampled every 100 ms from its first relative pose to its arrival: 3 when the estimator's
+  // covariance is honest, far more when it is over-confident.
+  double nees_mean = 0.0;
+  std::uint64_t nees_samples = 0;
+  // Fleet time (see ugv/fleet_clock.hpp): the UAV clock's steps it followed, and the error bound
+  // it reported at the end (< 0: not synchronised).
+  std::uint64_t clock_steps = 0;
+  double clock_error_s = -1.0;
   double traj_length_m = 0.0;
   double min_clearance_m = 0.0;  // closest approach of its footprint to an obstacle or UGV
   std::uint64_t support_requests = 0;
@@ -47,10 +63,13 @@ struct MissionOutcome {
   std::vector<std::string> warnings;  // about the map (see map_checks.hpp)
   std::vector<TaskTime> task_times;   // in table order of first appearance
   std::vector<UgvOutcome> ugvs;
-  // Averages per UGV, as in the paper (reach time over the UGVs that reached).
+  // Averages per UGV, as in the paper (reach time over the UGVs that reached; those that did not
+  // are missing from it, and counted). Waiting is what a user sees: each UGV's stopped_s.
   double reach_time_s = 0.0;
+  int reach_missing = 0;
   double waiting_time_s = 0.0;
   double max_waiting_time_s = 0.0;
+  double nees_mean = 0.0;  // the mean over the UGVs of their nees_mean
   double ugv_traj_length_m = 0.0;
   double uav_traj_length_m = 0.0;
   int collisions = 0;

@@ -19,6 +19,7 @@
 #include "colag/hal/sim/can_link.hpp"
 #include "colag/sim/world/box_world.hpp"
 #include "colag/sim/world/lidar_simulator.hpp"
+#include "colag/sim/world/robot_clock.hpp"
 #include "colag/sim/world/uav_body.hpp"
 #include "colag/sim/world/ugv_body.hpp"
 
@@ -57,8 +58,9 @@ class SimWorld {
            ForkJoin* fork_join = nullptr);
   ~SimWorld();
 
-  int add_ugv(const Pose2& start);
-  void add_uav(const Vec3& start);
+  // Each robot runs on its own clock (its devices stamp with it); the default is the world's.
+  int add_ugv(const Pose2& start, const ClockModel& clock = {});
+  void add_uav(const Vec3& start, const ClockModel& clock = {});
   void enable_ugv_lidars();  // self-perception baseline
 
   // Advances every body by dt and produces the sensor data due at `now`.
@@ -96,6 +98,7 @@ class SimWorld {
   Rng rng_;
   std::vector<std::unique_ptr<Ugv>> ugvs_;
   std::unique_ptr<UavBody> uav_;
+  ClockModel uav_clock_;
   std::unique_ptr<ScanDevice> uav_lidar_;
   std::unique_ptr<Camera> camera_;
   TimePoint next_scan_{}, next_frame_{};

@@ -1,0 +1,26 @@
+#pragma once
+// The UAV's side of fleet time (see msg/clock_sync.hpp): every clock request is answered at once
+// with the UAV's receive and send times. Runs in the control loop (50 Hz), so a request waits at
+// most one control period; the UGVs' filters use the exchanges with the shortest round trips.
+// Allocation-free.
+#include <cstdint>
+
+#include "colag/msg/clock_sync.hpp"
+#include "colag/platform/readers.hpp"
+
+namespace colag::uav {
+
+class ClockServer {
+ public:
+  Status attach(platform::Transport& transport, RobotId uav_id);
+  void step(TimePoint now);
+  std::uint64_t answered() const { return answered_; }
+
+ private:
+  platform::Transport* transport_ = nullptr;
+  RobotId uav_id_ = 0;
+  platform::QueueReader<msg::ClockRequest, limits::kMaxUgvs> requests_;
+  std::uint64_t answered_ = 0;
+};
+
+}  // namespace colag::uav

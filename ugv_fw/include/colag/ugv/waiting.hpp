@@ -1,0 +1,78 @@
+#pragma once
+// Why a UGV stands still before its goal, in the parts a user asks about: waiting for the UAV's
+// support, for another UGV, for a path, at start-up (no fleet time, no relative pose, no plan
+// yet), in a fault, or manoeuvring (turning on the spot, pulling away: driving, but slower than
+// kStillSpeed). Every control period its wheels turn slower than kStillSpeed before its goal goes
+// into exactly one part, so the parts sum to its waiting time, and the ground truth's "speed
+// below kStillSpeed" agrees with it to within a control period per stop (the odometry's delay).
+#include <array>
+#include <cstdint>
+
+#include "colag/common/time.hpp"
+#include "colag/msg/ugv_status.hpp"
+
+namespace colag::ugv {
+
+enum class WaitPart : std::uint8_t { kSupport, kOtherUgv, kNoPath, kStartup, kFault, kManoeuvre };
+inline constexpr std::size_t kWaitParts = 6;
+inline constexpr double kStillSpeed_mps = 0.05;
+
+inline const char* to_string(WaitPart p) {
+  switch (p) {
+    case WaitPart::kSupport:
+      return "support";
+    case WaitPart::kOtherUgv:
+      return "other_ugv";
+    case WaitPart::kNoPath:
+      return "no_path";
+    case WaitPart::kStartup:
+      return "startup";
+    case WaitPart::kFault:
+      return "fault";
+    case WaitPart::kManoeuvre:
+      return "manoeuvre";
+  }
+  return "unknown";
+}
+
+// The part a stop in `mode` belongs to (`planned`: it has found a path before; `tracking`: it is
+// following one). No path before the first one was found is start-up: the UAV has not mapped
+// around it yet.
+constexpr WaitPart wait_part(msg::UgvMode mode, msg::BlockedReason why, bool planned,
+                             bool tracking) {
+  switch (mode) {
+    case msg::UgvMode::kWaitingForSupport:
+      return WaitPart::kSupport;
+    case msg::UgvMode::kWaitingForRobot:
+      return WaitPart::kOtherUgv;
+    case msg::UgvMode::kNoPath:
+      return planned ? WaitPart::kNoPath : WaitPart::kStartup;
+    case msg::UgvMode::kFault:
+      return WaitPart::kFault;
+    case msg::UgvMode::kBlocked:
+      switch (why) {
+        case msg::BlockedReason::kNotCleared:
+          return WaitPart::kSupport;
+        case msg::BlockedReason::kRobotInTheWay:
+          return WaitPart::kOtherUgv;
+        case msg::BlockedReason::kNoPath:
+          return WaitPart::kNoPath;
+        case msg::BlockedReason::kNotLocalised:
+        case msg::BlockedReason::kNone:
+          return WaitPart::kStartup;
+      }
+      return WaitPart::kStartup;
+    case msg::UgvMode::kWaitingForInit:
+    case msg::UgvMode::kArrived:
+      return WaitPart::kStartup;
+    case msg::UgvMode::kDriving:
+      if (tracking) return WaitPart::kManoeuvre;
+      // Without a trajectory: its first plan, or a replan that failed.
+      return planned ? WaitPart::kNoPath : WaitPart::kStartup;
+  }
+  return WaitPart::kStartup;
+}
+
+using WaitingParts = std::array<Duration, kWaitParts>;
+
+}  // namespace colag::ugv
