@@ -24,7 +24,7 @@ set(colag_layer_rules
   "ugv_fw/|common/ hal/include/ platform/include/ ugv_fw/include/ ugv_fw/src/"
   "uav_fw/app/|common/ hal/ platform/ board/ uav_fw/"
   "uav_fw/|common/ hal/include/ platform/include/ uav_fw/include/ uav_fw/src/"
-  "sim/|common/ hal/ platform/ ugv_fw/include/ ugv_fw/src/ uav_fw/include/ uav_fw/src/ sim/"
+  "sim/|common/ hal/ platform/ board/ ugv_fw/include/ ugv_fw/src/ uav_fw/include/ uav_fw/src/ sim/"
   "tools/|common/ hal/ platform/ board/ ugv_fw/ uav_fw/ sim/ tools/"
   "tests/|common/ hal/ platform/ board/ ugv_fw/ uav_fw/ sim/ tools/ tests/")
 

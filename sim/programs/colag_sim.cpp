@@ -16,6 +16,7 @@
 
 #include "colag/sim/host_program.hpp"
 #include "colag/sim/mission/mission.hpp"
+#include "colag/sim/mission/world_file.hpp"
 #include "colag/sim/mission_png.hpp"
 #include "colag/sim/world/pcd_writer.hpp"
 
@@ -82,6 +83,11 @@ int run(int argc, char** argv) {
       ->excludes(scenario)
       ->check(CLI::ExistingFile);
   app.add_option("--ugvs", cfg.ugvs, "number of UGVs")->check(CLI::Range(1, 16));
+  std::string world_name = "ideal";
+  app.add_option("--world", world_name,
+                 "ideal (the noise the firmware's models assume: the paper's tables), field (what "
+                 "real wheels, cameras, LiDARs and clocks do), or a YAML scenario file "
+                 "(config/worlds/field.yaml documents every key)");
   app.add_option("--seed", cfg.seed, "seed of the map, the noise and the network")
       ->check(sim::kSeed);
   app.add_option("--ablation", ablation,
@@ -146,6 +152,10 @@ int run(int argc, char** argv) {
     cfg.map_file = map_file;
   }
   mission::parse_ablation(ablation, cfg.ablation);
+  if (std::string error; !mission::world_from_name(world_name, cfg.world, error)) {
+    std::fprintf(stderr, "colag_sim: --world: %s\n", error.c_str());
+    return 2;
+  }
   cfg.faults.loss = loss_pct / 100.0;
   cfg.faults.odom_bias = odom_bias_pct / 100.0;
   for (const auto& [text, window, name] :
@@ -226,10 +236,10 @@ int run(int argc, char** argv) {
   }
   const mission::MissionOutcome& o = outcome.value();
   if (!quiet) {
-    std::printf("colag_sim: %s map, %d UGV%s, seed %llu, ablation %s%s\n",
-                cfg.scenario == "file" ? cfg.map_file.c_str() : cfg.scenario.c_str(), cfg.ugvs,
-                cfg.ugvs == 1 ? "" : "s", static_cast<unsigned long long>(cfg.seed),
-                mission::to_string(cfg.ablation),
+    std::printf("colag_sim: %s map, %s world, %d UGV%s, seed %llu, ablation %s%s\n",
+                cfg.scenario == "file" ? cfg.map_file.c_str() : cfg.scenario.c_str(),
+                cfg.world.name.c_str(), cfg.ugvs, cfg.ugvs == 1 ? "" : "s",
+                static_cast<unsigned long long>(cfg.seed), mission::to_string(cfg.ablation),
                 cfg.self_perception ? ", self-perception baseline" : "");
     print_table(o);
   }

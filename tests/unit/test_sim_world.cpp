@@ -264,3 +264,66 @@ TEST(LidarSimulator, CastsWhereTestingEveryBoxWould) {
     EXPECT_LT(worst, 1e-5) << pose.p.transpose();  // float output
   }
 }
+
+// The field world's wheels: each encoder counts its own wheel with its own scale error, so a
+// robot driving straight reports the scaled distance and a turn that did not happen.
+TEST(SimWorld, FieldWheelsReportScaledDistanceAndAPhantomTurn) {
+  Rig rig;
+  WheelErrors wheels;
+  wheels.left_scale = 0.05;
+  wheels.right_scale = -0.05;
+  const int u = rig.sim->add_ugv({Vec2(0, 3), 0.0}, {}, &wheels);
+  hal::can::CanDrive drive(rig.sim->ugv_can(u), {}, {});
+  hal::can::CanWheelOdometry odo(rig.sim->ugv_can(u), {}, {});
+  double travelled = 0, turned = 0;
+  for (int i = 0; i < 200; ++i) {
+    rig.run(0.02, 0.5, 0.0, drive);
+    hal::WheelOdometrySample s;
+    while (odo.poll(s)) {
+      travelled += s.v_mps * 0.02;
+      turned += s.omega_radps * 0.02;
+    }
+  }
+  EXPECT_NEAR(rig.sim->ugv(u).pose().p.x(), 1.875, 0.05);  // the body went straight
+  EXPECT_NEAR(rig.sim->ugv(u).pose().yaw_rad, 0.0, 0.05);
+  EXPECT_NEAR(travelled, 1.875, 0.05);  // the mean scale is 1
+  // (right - left) / track: -0.1 x 1.875 m / track, seen as a turn to the right.
+  const double track = hal::can::WheelGeometry{}.track_width_m;
+  EXPECT_NEAR(turned, -0.1 * 1.875 / track, 0.05);
+}
+
+// The field world's camera: tags missed, outliers, frames late by the latency.
+TEST(SimWorld, FieldCameraMissesSomeTagsThrowsSomeOutliersAndIsLate) {
+  SimWorldConfig cfg;
+  cfg.camera.miss_probability = 0.1;
+  cfg.camera.outlier_probability = 0.05;
+  cfg.camera.outlier_max_m = 3.0;  // 0.9-3 m off: far beyond the 0.2 m noise
+  cfg.camera.latency = 100ms;
+  cfg.camera.period = 60ms;  // on the 20 ms step grid
+  BoxWorld empty;
+  hal::scripted::ManualClock clock;
+  SimWorld sim(cfg, empty, clock);
+  sim.add_uav(Vec3(0, 0, 1));
+  sim.add_ugv({Vec2(0.5, 0.0), 0.0});
+  int detections = 0, far_off = 0;
+  Duration worst_age{}, best_age = 1h;
+  for (int i = 0; i < 4000; ++i) {
+    clock.advance(20ms);
+    sim.step(clock.now(), 0.02);
+    hal::RelativePoseDetection d[4];
+    const std::size_t n = sim.uav_camera().poll(d);
+    if (clock.now() < TimePoint{200ms}) continue;
+    for (std::size_t k = 0; k < n; ++k) {
+      ++detections;
+      worst_age = std::max(worst_age, clock.now() - d[k].stamp);
+      best_age = std::min(best_age, clock.now() - d[k].stamp);
+      if ((d[k].ugv_in_uav.p.head<2>() - Vec2(0.5, 0.0)).norm() > 0.8) ++far_off;  // 4 sigma
+    }
+  }
+  const int captured = static_cast<int>(to_seconds(clock.now() - TimePoint{200ms}) / 0.06);
+  EXPECT_NEAR(detections, 0.9 * captured, 0.03 * captured);  // 10 % missed
+  EXPECT_GT(far_off, 0.03 * detections);                     // 5 % outliers
+  EXPECT_LT(far_off, 0.07 * detections);
+  EXPECT_GE(best_age, 100ms);  // delivered no earlier than the latency
+  EXPECT_LE(worst_age, 160ms);
+}

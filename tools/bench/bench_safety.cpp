@@ -49,13 +49,15 @@ int run_safety(const SafetyOptions& o) {
           r.spec.ugvs = n;
           r.spec.faults = f.name;
           r.spec.fault_args = f.args;
+          r.spec.world = o.world;
           r.seed = s;
           runs.push_back(r);
         }
       }
     }
   }
-  std::printf("colag_bench safety: %zu missions, %d at a time\n", runs.size(), o.jobs);
+  std::printf("colag_bench safety: %zu missions in the %s world, %d at a time\n", runs.size(),
+              o.world.c_str(), o.jobs);
   if (!run_missions(runs, sim_path(o.sim), o.jobs, o.max_time_s)) return 2;
 
   std::ofstream csv(o.csv);

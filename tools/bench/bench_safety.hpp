@@ -13,6 +13,7 @@ struct SafetyOptions {
   double max_time_s = 400.0;
   bool quick = false;  // dense, 3 UGVs, two fault settings, one seed: a smoke run
   std::string sim;
+  std::string world = "ideal";  // colag_sim --world: ideal, field or a YAML file
 };
 
 int run_safety(const SafetyOptions& options);

@@ -106,10 +106,12 @@ int run_tables(const TablesOptions& o) {
     for (int s = 1; s <= (o.quick ? 1 : o.seeds); ++s) {
       Run r;
       r.spec = c;
+      r.spec.world = o.world;
       r.seed = s;
       runs.push_back(r);
     }
   }
+  std::printf("colag_bench: %s world\n", o.world.c_str());
   std::printf("colag_bench: %zu missions (%d seed%s), %d at a time\n", runs.size(),
               o.quick ? 1 : o.seeds, o.seeds == 1 ? "" : "s", o.jobs);
   if (!run_missions(runs, sim_path(o.sim), o.jobs, o.max_time_s)) return 2;

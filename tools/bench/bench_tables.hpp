@@ -12,8 +12,9 @@ struct TablesOptions {
   std::string tables = "all";  // "1", "2" or "all"
   std::string csv = "colag_bench.csv";
   double max_time_s = 400.0;
-  bool quick = false;  // one small configuration: a smoke run
-  std::string sim;     // path of colag_sim (default: next to colag_bench)
+  bool quick = false;           // one small configuration: a smoke run
+  std::string sim;              // path of colag_sim (default: next to colag_bench)
+  std::string world = "ideal";  // colag_sim --world: ideal, field or a YAML file
 };
 
 int run_tables(const TablesOptions& options);

@@ -70,6 +70,7 @@ int run(int argc, char** argv) {
       ->check(sim::positive_up_to(1e6));
   tables->add_option("--sim", topt.sim, "colag_sim to run (default: next to colag_bench)");
   tables->add_flag("--quick", topt.quick, "one small configuration, one seed (a smoke run)");
+  tables->add_option("--world", topt.world, "ideal (the paper's), field, or a YAML scenario file");
   auto* safety = app.add_subcommand(
       "safety", "Monte-Carlo under faults: maps x UGV counts x fault settings x seeds");
   programs::SafetyOptions sopt;
@@ -80,6 +81,7 @@ int run(int argc, char** argv) {
       ->check(sim::positive_up_to(1e6));
   safety->add_option("--sim", sopt.sim, "colag_sim to run (default: next to colag_bench)");
   safety->add_flag("--quick", sopt.quick, "dense, 3 UGVs, two fault settings, one seed");
+  safety->add_option("--world", sopt.world, "ideal, field, or a YAML scenario file");
   auto* speed = app.add_subcommand(
       "speed", "the real-time factor of one mission (default dense, 7 UGVs, seed 1), N runs");
   programs::SpeedOptions popt;

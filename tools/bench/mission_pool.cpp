@@ -48,6 +48,7 @@ bool start(MissionRun& r, const std::string& sim, double max_time, int threads) 
                                    "--max-time", std::to_string(max_time),
                                    "--json",     r.json_path};
   if (r.spec.self_perception) args.push_back("--self-perception");
+  args.insert(args.end(), {"--world", r.spec.world});
   args.insert(args.end(), r.spec.fault_args.begin(), r.spec.fault_args.end());
   std::vector<char*> argv;
   argv.reserve(args.size() + 1);

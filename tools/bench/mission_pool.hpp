@@ -15,6 +15,7 @@ struct MissionSpec {
   bool self_perception = false;
   std::string faults = "none";          // a label for the fault setting
   std::vector<std::string> fault_args;  // colag_sim's fault options for it
+  std::string world = "ideal";          // colag_sim --world
   std::string key() const;
 };
 

@@ -145,7 +145,11 @@ class OnRobotClock final : public platform::Task {
 
 // Each robot's clock: the UAV's first, then one per UGV (see ClockConfig).
 std::vector<sim::ClockModel> draw_clocks(const MissionConfig& cfg) {
-  const ClockConfig& c = cfg.clocks;
+  ClockConfig c = cfg.clocks;
+  if (!c.any()) {  // the world's
+    c.offset_s = cfg.world.clocks.offset_s;
+    c.drift_ppm = cfg.world.clocks.drift_ppm;
+  }
   std::vector<sim::ClockModel> out(static_cast<std::size_t>(cfg.ugvs) + 1);
   if (!c.any()) return out;
   Rng rng(cfg.seed * 0x9E3779B97F4A7C15ULL + 0xC10C);  // its own stream: the rest is unchanged
@@ -156,6 +160,39 @@ std::vector<sim::ClockModel> draw_clocks(const MissionConfig& cfg) {
   }
   out[0].step_at_s = c.step_at_s;
   out[0].step_s = c.step_s;
+  return out;
+}
+
+// Each UGV's wheels, drawn from the world profile (its own stream: the rest is unchanged).
+std::vector<sim::WheelErrors> draw_wheels(const MissionConfig& cfg) {
+  const sim::WheelProfile& w = cfg.world.wheels;
+  std::vector<sim::WheelErrors> out(static_cast<std::size_t>(cfg.ugvs));
+  Rng rng(cfg.seed * 0x2545F4914F6CDD1DULL + 0x3EE1);
+  for (sim::WheelErrors& e : out) {
+    e.left_scale = rng.uniform(-w.scale_spread, w.scale_spread);
+    e.right_scale = rng.uniform(-w.scale_spread, w.scale_spread);
+    e.yaw_rate_bias_radps = rng.uniform(-w.yaw_rate_bias_radps, w.yaw_rate_bias_radps);
+    e.slip_per_radps = w.slip_per_radps;
+    e.slip_per_mps2 = w.slip_per_mps2;
+  }
+  return out;
+}
+
+// The world profile's camera.
+sim::CameraConfig camera_of(const sim::CameraProfile& c) {
+  sim::CameraConfig out;
+  out.range_m = c.range_m;
+  out.fov_half_angle_rad =
+      c.fov_half_angle_deg >= 180.0 ? M_PI : c.fov_half_angle_deg * M_PI / 180.0;
+  out.sigma_position_m = c.sigma_position_m;
+  out.sigma_yaw_rad = c.sigma_yaw_rad;
+  out.true_sigma_scale = c.true_sigma_scale;
+  out.miss_probability = c.miss;
+  out.outlier_probability = c.outlier;
+  out.outlier_max_m = c.outlier_max_m;
+  out.outlier_max_rad = c.outlier_max_deg * M_PI / 180.0;
+  out.latency = seconds(c.latency_ms / 1e3);
+  out.jitter = seconds(c.jitter_ms / 1e3);
   return out;
 }
 
@@ -303,6 +340,9 @@ std::unique_ptr<Mission> Mission::compose(const MissionConfig& cfg, std::string&
   wc.seed = cfg.seed;
   wc.lidar.columns = cfg.lidar_columns;
   wc.ugv.encoder_bias = cfg.faults.odom_bias;
+  wc.camera = camera_of(cfg.world.camera);
+  wc.lidar_errors = {cfg.world.lidar.range_sigma_m, cfg.world.lidar.dropout};
+  const std::vector<sim::WheelErrors> wheels = draw_wheels(cfg);
   p->pool = std::make_unique<platform::WorkerPool>(cfg.threads - 1);
   p->world = std::make_unique<sim::SimWorld>(wc, boxes, p->ex->clock(), p->pool.get());
   p->world_task = std::make_unique<WorldTask>(*p->world);
@@ -330,7 +370,8 @@ std::unique_ptr<Mission> Mission::compose(const MissionConfig& cfg, std::string&
   // tasks are a lane of the executor, the UGVs' lanes run side by side on the worker pool.
   p->ugvs.resize(static_cast<std::size_t>(cfg.ugvs));
   for (int i = 0; i < cfg.ugvs; ++i) {
-    p->world->add_ugv(ugv_start(i), p->clocks[static_cast<std::size_t>(i) + 1]);
+    p->world->add_ugv(ugv_start(i), p->clocks[static_cast<std::size_t>(i) + 1],
+                      &wheels[static_cast<std::size_t>(i)]);
   }
   if (cfg.self_perception) p->world->enable_ugv_lidars();
   for (int i = 0; i < cfg.ugvs; ++i) {

@@ -3,14 +3,34 @@
 #include <cmath>
 #include <limits>
 
+#include "colag/common/ring_buffer.hpp"
+
 namespace colag::sim {
 
 // A LiDAR device: the latest scan of a LidarSimulator, handed out once.
 class SimWorld::ScanDevice final : public hal::Lidar {
  public:
-  ScanDevice(const LidarPattern& pattern, ForkJoin* fork_join) : sim_(pattern, fork_join) {}
+  ScanDevice(const LidarPattern& pattern, ForkJoin* fork_join, const LidarErrors& errors,
+             std::uint64_t seed)
+      : sim_(pattern, fork_join), errors_(errors), rng_(seed) {
+    if (errors_.any()) noisy_.reserve(limits::kMaxLidarPoints);
+  }
   void scan(const BoxWorld& world, const Pose3& pose, TimePoint now) {
     sim_.scan(world, pose, points_, misses_);
+    if (errors_.any()) {
+      // Each return off along its ray; some lost (a real driver does not report them).
+      noisy_.clear();
+      for (const hal::LidarPoint& q : points_) {
+        if (errors_.dropout > 0.0 && rng_.bernoulli(errors_.dropout)) continue;
+        const double r =
+            std::sqrt(double{q.x_m} * q.x_m + double{q.y_m} * q.y_m + double{q.z_m} * q.z_m);
+        const double noise =
+            errors_.range_sigma_m > 0.0 ? rng_.gaussian(0.0, errors_.range_sigma_m) : 0.0;
+        const auto k = static_cast<float>(r > 0.0 ? std::max(r + noise, 0.0) / r : 1.0);
+        noisy_.push_back({q.x_m * k, q.y_m * k, q.z_m * k});
+      }
+      points_ = noisy_;
+    }
     stamp_ = now;
     fresh_ = true;
   }
@@ -23,22 +43,49 @@ class SimWorld::ScanDevice final : public hal::Lidar {
 
  private:
   LidarSimulator sim_;
+  LidarErrors errors_;
+  Rng rng_;
+  std::vector<hal::LidarPoint> noisy_;
   std::span<const hal::LidarPoint> points_, misses_;
   TimePoint stamp_{};
   bool fresh_ = false;
 };
 
 // The UAV's relative-pose camera: the newest frame of detections, handed out once.
+// Frames wait `latency` (+ jitter) between capture and delivery; a newer frame delivered
+// replaces one not yet taken.
 class SimWorld::Camera final : public hal::RelativePoseSensor {
  public:
+  using Frame = StaticVector<hal::RelativePoseDetection, limits::kMaxRpeDetectionsPerFrame>;
   std::size_t poll(std::span<hal::RelativePoseDetection> out) override {
     if (!fresh_) return 0;
     fresh_ = false;
-    const std::size_t n = std::min(out.size(), frame.size());
-    std::copy_n(frame.begin(), n, out.begin());
+    const std::size_t n = std::min(out.size(), delivered_.size());
+    std::copy_n(delivered_.begin(), n, out.begin());
     return n;
   }
-  StaticVector<hal::RelativePoseDetection, limits::kMaxRpeDetectionsPerFrame> frame;
+  // The frame just captured (in `frame`) leaves the camera at `release` (world time).
+  void capture(TimePoint release) {
+    Pending p{release, frame};
+    if (pending_.full()) pending_.pop_front();  // a camera that far behind drops frames
+    (void)pending_.try_push(p);
+  }
+  void deliver(TimePoint now) {
+    while (!pending_.empty() && pending_.front().release <= now) {
+      delivered_ = pending_.front().frame;
+      pending_.pop_front();
+      fresh_ = true;
+    }
+  }
+  Frame frame;
+
+ private:
+  struct Pending {
+    TimePoint release;
+    Frame frame;
+  };
+  RingBuffer<Pending, 16> pending_;
+  Frame delivered_;
   bool fresh_ = false;
 };
 
@@ -68,9 +115,11 @@ SimWorld::SimWorld(const SimWorldConfig& config, BoxWorld world, const hal::Cloc
 
 SimWorld::~SimWorld() = default;
 
-int SimWorld::add_ugv(const Pose2& start, const ClockModel& clock) {
+int SimWorld::add_ugv(const Pose2& start, const ClockModel& clock, const WheelErrors* wheels) {
   const auto seed = config_.seed * 1000003ULL + ugvs_.size() + 1;
-  ugvs_.push_back(std::make_unique<Ugv>(config_.ugv, start, seed, clock_, clock));
+  UgvBodyConfig body = config_.ugv;
+  if (wheels != nullptr) body.wheel_errors = *wheels;
+  ugvs_.push_back(std::make_unique<Ugv>(body, start, seed, clock_, clock));
   scene_.boxes.emplace_back();  // its body, placed by update_scene
   update_scene();
   return static_cast<int>(ugvs_.size()) - 1;
@@ -79,12 +128,15 @@ int SimWorld::add_ugv(const Pose2& start, const ClockModel& clock) {
 void SimWorld::add_uav(const Vec3& start, const ClockModel& clock) {
   uav_clock_ = clock;
   uav_ = std::make_unique<UavBody>(config_.uav, start);
-  uav_lidar_ = std::make_unique<ScanDevice>(config_.lidar, fork_join_);
+  uav_lidar_ = std::make_unique<ScanDevice>(config_.lidar, fork_join_, config_.lidar_errors,
+                                            config_.seed * 7919ULL + 17);
 }
 
 void SimWorld::enable_ugv_lidars() {
+  std::uint64_t k = 0;
   for (auto& u : ugvs_)
-    u->lidar = std::make_unique<ScanDevice>(config_.lidar, fork_join_);
+    u->lidar = std::make_unique<ScanDevice>(config_.lidar, fork_join_, config_.lidar_errors,
+                                            config_.seed * 7919ULL + 18 + k++);
 }
 
 hal::CanBus& SimWorld::ugv_can(int i) {
@@ -153,16 +205,26 @@ void SimWorld::detect(TimePoint now) {
     d.ugv_id = static_cast<RobotId>(i);
     // One draw per statement: the order of a constructor's arguments is unspecified (GCC takes
     // them last to first on x86-64, first to last on aarch64). z, y, x: as the seeds have flown.
-    const double nz = rng_.gaussian(0, c.sigma_position_m);
-    const double ny = rng_.gaussian(0, c.sigma_position_m);
-    const double nx = rng_.gaussian(0, c.sigma_position_m);
-    d.ugv_in_uav.p = truth.p + Vec3(nx, ny, nz);
-    d.ugv_in_uav.q = (truth.q * quat_from_yaw(rng_.gaussian(0, c.sigma_yaw_rad))).normalized();
+    if (c.miss_probability > 0.0 && rng_.bernoulli(c.miss_probability)) continue;
+    const double sp_true = c.sigma_position_m * c.true_sigma_scale;
+    const double nz = rng_.gaussian(0, sp_true);
+    const double ny = rng_.gaussian(0, sp_true);
+    const double nx = rng_.gaussian(0, sp_true);
+    double yaw_error = rng_.gaussian(0, c.sigma_yaw_rad * c.true_sigma_scale);
+    Vec3 error(nx, ny, nz);
+    if (c.outlier_probability > 0.0 && rng_.bernoulli(c.outlier_probability)) {
+      // Far off, in the camera's frame; mostly sideways, as a mismatched tag is.
+      const double r = rng_.uniform(0.3, 1.0) * c.outlier_max_m;
+      const double a = rng_.uniform(-M_PI, M_PI);
+      error += Vec3(r * std::cos(a), r * std::sin(a), 0.0);
+      yaw_error += rng_.uniform(-c.outlier_max_rad, c.outlier_max_rad);
+    }
+    d.ugv_in_uav.p = truth.p + error;
+    d.ugv_in_uav.q = (truth.q * quat_from_yaw(yaw_error)).normalized();
     const double sp = c.sigma_position_m * c.sigma_position_m;
     d.covariance = Eigen::Vector4d(sp, sp, sp, c.sigma_yaw_rad * c.sigma_yaw_rad).asDiagonal();
     (void)camera_->frame.push_back(d);
   }
-  camera_->fresh_ = true;
 }
 
 void SimWorld::watch_collisions(TimePoint now) {
@@ -214,7 +276,12 @@ void SimWorld::step(TimePoint now, double dt) {
     next_frame_ = now + config_.camera.period;
     update_scene();
     detect(uav_now);
+    const CameraConfig& c = config_.camera;
+    Duration late = c.latency;
+    if (c.jitter.count() > 0) late += seconds(rng_.uniform(0.0, to_seconds(c.jitter)));
+    camera_->capture(now + late);
   }
+  if (uav_) camera_->deliver(now);
 }
 
 }  // namespace colag::sim

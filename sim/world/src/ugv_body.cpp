@@ -30,6 +30,16 @@ void UgvBody::step(TimePoint now, double dt, hal::CanBus& bus) {
     v *= 1.0 + config_.motion_noise_fraction * rng_.gaussian();
     w *= 1.0 + config_.motion_noise_fraction * rng_.gaussian();
   }
+  // The field world's wheels: the body slips against them, and the ground turns it.
+  const WheelErrors& e = config_.wheel_errors;
+  const bool field = e.any();
+  const double wheel_left = moving ? left_ : 0.0, wheel_right = moving ? right_ : 0.0;
+  if (field && moving) {
+    const double accel = dt > 0.0 ? (0.5 * (left_ + right_) - last_v_) / dt : 0.0;
+    v *= 1.0 - std::min(0.5, e.slip_per_mps2 * std::abs(accel));
+    w = w * (1.0 - std::min(0.5, e.slip_per_radps * std::abs(w))) + e.yaw_rate_bias_radps;
+  }
+  last_v_ = 0.5 * (left_ + right_);
   const double th = pose_.yaw_rad;
   if (std::abs(w) > 1e-9) {
     pose_.p += Vec2(v / w * (std::sin(th + w * dt) - std::sin(th)),
@@ -43,6 +53,12 @@ void UgvBody::step(TimePoint now, double dt, hal::CanBus& bus) {
   // Encoders: what the wheels did, plus the odometry noise while moving (correlated between
   // the wheels so that v and omega get exactly sigma_v and sigma_omega).
   double mv = v * (1.0 + config_.encoder_bias), mw = w * (1.0 + config_.encoder_bias);
+  if (field) {
+    // Each encoder counts its own wheel, with its own scale error; the body moved less.
+    const double ml = wheel_left * (1.0 + e.left_scale), mr = wheel_right * (1.0 + e.right_scale);
+    mv = 0.5 * (ml + mr) * (1.0 + config_.encoder_bias);
+    mw = (mr - ml) / b * (1.0 + config_.encoder_bias);
+  }
   if (moving) {
     mv += rng_.gaussian(0.0, config_.odometry_noise.sigma_v_mps);
     mw += rng_.gaussian(0.0, config_.odometry_noise.sigma_omega_radps);

@@ -9,6 +9,7 @@
 
 #include "colag/common/geometry.hpp"
 #include "colag/sim/world/box_world.hpp"
+#include "colag/sim/world/world_profile.hpp"
 
 namespace colag::mission {
 
@@ -65,7 +66,8 @@ struct MissionConfig {
   double predict_horizon_m = 2.0;  // UGV collision-prediction horizon (straight-line distance)
   int threads = 2;  // cores the simulation may use (1..8); the results do not depend on it
   FaultConfig faults;
-  ClockConfig clocks;
+  ClockConfig clocks;                             // none set: the world profile's
+  sim::WorldProfile world;                        // ideal (the paper's) or field
   std::function<void(double fraction)> progress;  // called every simulated second (optional)
   std::function<void(const std::string&)> warn;   // each warning about the map (optional)
 };

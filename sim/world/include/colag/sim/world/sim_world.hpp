@@ -32,6 +32,23 @@ struct CameraConfig {
   double fov_half_angle_rad = M_PI;  // from straight down; pi = unlimited (the paper's device)
   double tag_height_m = 0.3;         // what the camera looks at, above the UGV's origin
   Duration period = std::chrono::milliseconds(50);
+  // The field world's camera (all off in the ideal one): tags missed, detections far off (a
+  // flipped or mismatched tag), the true error larger than the covariance reported, and frames
+  // arriving late.
+  double miss_probability = 0.0;
+  double outlier_probability = 0.0;
+  double outlier_max_m = 1.0;     // an outlier's horizontal error: uniform up to this
+  double outlier_max_rad = 0.52;  // and its yaw error
+  double true_sigma_scale = 1.0;  // true error sigma = this x the reported sigma
+  Duration latency{};             // capture to delivery
+  Duration jitter{};              // + uniform 0..jitter
+};
+
+// The field world's LiDAR: range noise, lost returns.
+struct LidarErrors {
+  double range_sigma_m = 0.0;
+  double dropout = 0.0;
+  bool any() const { return range_sigma_m > 0.0 || dropout > 0.0; }
 };
 
 struct SimWorldConfig {
@@ -39,6 +56,7 @@ struct SimWorldConfig {
   UavBodyConfig uav;
   LidarPattern lidar;
   Duration lidar_period = std::chrono::milliseconds(100);
+  LidarErrors lidar_errors;
   CameraConfig camera;
   double ugv_lidar_height_m = 0.4;  // self-perception baseline
   std::uint64_t seed = 1;
@@ -59,7 +77,9 @@ class SimWorld {
   ~SimWorld();
 
   // Each robot runs on its own clock (its devices stamp with it); the default is the world's.
-  int add_ugv(const Pose2& start, const ClockModel& clock = {});
+  // `wheels`: this UGV's own (the field world's), over config.ugv.wheel_errors.
+  int add_ugv(const Pose2& start, const ClockModel& clock = {},
+              const WheelErrors* wheels = nullptr);
   void add_uav(const Vec3& start, const ClockModel& clock = {});
   void enable_ugv_lidars();  // self-perception baseline
 

@@ -12,6 +12,22 @@
 
 namespace colag::sim {
 
+// What real wheels do that the EKF's model does not (the field world; all zero in the ideal
+// one): each encoder's scale off (a tyre worn or inflated differently, a wrong nominal radius:
+// both a distance and a track error), the body slipping more the harder it turns or
+// accelerates (skid steering), and the ground turning it a little (camber, a slope).
+struct WheelErrors {
+  double left_scale = 0.0;  // the left encoder reports (1 + left_scale) x the wheel's motion
+  double right_scale = 0.0;
+  double slip_per_radps = 0.0;  // the body's turn rate is (1 - k |omega|) x the wheels'
+  double slip_per_mps2 = 0.0;   // its speed is (1 - k |accel|) x the wheels'
+  double yaw_rate_bias_radps = 0.0;
+  bool any() const {
+    return left_scale != 0.0 || right_scale != 0.0 || slip_per_radps != 0.0 ||
+           slip_per_mps2 != 0.0 || yaw_rate_bias_radps != 0.0;
+  }
+};
+
 struct UgvBodyConfig {
   double radius_m = 0.25;
   double height_m = 0.3;  // the body's top (the AprilTag lies on it): what sensors see of it
@@ -27,6 +43,7 @@ struct UgvBodyConfig {
   OdometryNoise odometry_noise;  // sigma_v, sigma_omega used; fractions ignored
   Duration command_timeout = std::chrono::milliseconds(200);
   double encoder_bias = 0.0;  // fault injection: encoders report (1 + bias) x the wheels' motion
+  WheelErrors wheel_errors;   // the field world's wheels (per UGV)
 };
 
 class UgvBody {
@@ -50,6 +67,7 @@ class UgvBody {
   Pose2 pose_;
   Rng rng_;
   double left_ = 0.0, right_ = 0.0;  // true wheel speeds
+  double last_v_ = 0.0;              // the wheels' mean speed one step ago (for the slip)
   double target_left_ = 0.0, target_right_ = 0.0;
   TimePoint last_command_ = kNever;
   double ticks_left_ = 0.0, ticks_right_ = 0.0;  // measured, fractional
