@@ -38,17 +38,6 @@ ClockOffsetFilter::Sample ClockOffsetFilter::sample_of(const ClockExchange& x) {
   return {x.t1 + (x.t4 - x.t1) / 2, (out + back) / 2, (x.t4 - x.t1) - (x.t3 - x.t2)};
 }
 
-void ClockOffsetFilter::reset() {
-  window_.clear();
-  accepted_ = 0;
-  unexplained_.clear();
-  fitted_ = 0.0;
-  base_ = Duration::zero();
-  best_delta_ = Duration::max();
-  spread_ = 0.0;
-  // drift_ is kept: a peer that rebooted still has the same crystal.
-}
-
 ClockOffsetFilter::Verdict ClockOffsetFilter::add(const ClockExchange& x) {
   // Our two stamps come from our clock (trusted); the peer's may be anything: check before any
   // arithmetic that could overflow.
@@ -137,6 +126,7 @@ void ClockOffsetFilter::refit() {
     }
   }
   const double mx = sx / n, my = sy / n;
+  double fit_sxx = -1.0;  // >= 0 when this refit fitted the drift
   if (n >= 3.0 && t0_ - first >= config_.min_fit_span) {
     double sxy = 0.0, sxx = 0.0;
     for (std::size_t i = 0; i < window_.size(); ++i) {
@@ -149,26 +139,23 @@ void ClockOffsetFilter::refit() {
     const double limit = config_.max_drift_ppm * 1e-6;
     drift_ = std::clamp(sxx > 0.0 ? sxy / sxx : 0.0, -limit, limit);
     drift_fitted_ = sxx > 0.0;
-    // The slope's standard error, from the residuals.
-    double rss = 0.0;
-    const double a = my - drift_ * mx;
-    for (std::size_t i = 0; i < window_.size(); ++i) {
-      const Sample& s = window_[i];
-      if (s.delta > keep) continue;
-      const double r = static_cast<double>((s.theta - base_).count()) -
-                       (a + drift_ * static_cast<double>((s.at - t0_).count()));
-      rss += r * r;
-    }
-    drift_sigma_ = n > 2.0 && sxx > 0.0 ? std::sqrt(rss / (n - 2.0) / sxx) : limit;
+    fit_sxx = sxx;
   }
   fitted_ = my - drift_ * mx;
+  // The residuals: their largest is the spread; with a fitted drift, they give its standard error.
+  double rss = 0.0;
   spread_ = 0.0;
   for (std::size_t i = 0; i < window_.size(); ++i) {
     const Sample& s = window_[i];
     if (s.delta > keep) continue;
     const double r = static_cast<double>((s.theta - base_).count()) -
                      (fitted_ + drift_ * static_cast<double>((s.at - t0_).count()));
+    rss += r * r;
     spread_ = std::max(spread_, std::abs(r));
+  }
+  if (fit_sxx >= 0.0) {
+    drift_sigma_ = n > 2.0 && fit_sxx > 0.0 ? std::sqrt(rss / (n - 2.0) / fit_sxx)
+                                            : config_.max_drift_ppm * 1e-6;
   }
 }
 

@@ -92,7 +92,6 @@ void UgvNavTask::control_step(TimePoint now) {
   if (!arrived_ && (std::abs(wheel_speed_) < kStillSpeed_mps || fault_)) {
     const WaitPart part = wait_part(mode_, blocked_reason_, health_.plans > health_.plan_failures,
                                     !trajectory_.empty());
-    waiting_ += seconds(dt);
     waiting_parts_[static_cast<std::size_t>(part)] += seconds(dt);
   }
 }
@@ -211,8 +210,6 @@ void UgvNavTask::drive(TimePoint now, double dt) {
   }
   blocked_reason_ = mode_ == msg::UgvMode::kBlocked ? blocked_.reason() : msg::BlockedReason::kNone;
   if (mode_ != msg::UgvMode::kDriving || trajectory_.empty()) {
-    // Standing still before the goal is waiting, whatever the reason.
-
     controller_.hold();
     command(now, 0.0, 0.0);
     return;

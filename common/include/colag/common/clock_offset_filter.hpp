@@ -59,7 +59,6 @@ class ClockOffsetFilter {
   explicit ClockOffsetFilter(const ClockFilterConfig& config = {}) : config_(config) {}
 
   Verdict add(const ClockExchange& x);
-  void reset();
 
   // Enough exchanges, and the error bound at `now` (ours) below max_error.
   bool synchronised(TimePoint now) const;

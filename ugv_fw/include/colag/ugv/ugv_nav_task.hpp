@@ -70,7 +70,12 @@ class UgvNavTask {
   const UgvHealth& health() const { return health_; }
   const FleetClock& fleet_clock() const { return fleet_; }
   TimePoint now() const { return last_control_; }  // its clock, at its last control step
-  double waiting_time_s() const { return to_seconds(waiting_); }  // stood still before arrival
+  double waiting_time_s() const {                  // stood still before arrival: the parts' sum
+    Duration sum{};
+    for (const Duration& d : waiting_parts_)
+      sum += d;
+    return to_seconds(sum);
+  }
   const WaitingParts& waiting_parts() const { return waiting_parts_; }   // summing to it
   msg::BlockedReason blocked_reason() const { return blocked_reason_; }  // with kBlocked
   bool requesting_support() const { return support_.requesting(); }
@@ -156,7 +161,6 @@ class UgvNavTask {
   TimePoint started_{};
   TimePoint last_control_{};
   TimePoint last_plan_{};
-  Duration waiting_{};
   WaitingParts waiting_parts_{};
   double cross_track_m_ = 0.0;
   double v_cmd_ = 0.0;
