@@ -173,7 +173,7 @@ int run(int argc, char** argv) {
     const auto colon = clock_step.find(':');
     char* end = nullptr;
     const double at = std::strtod(clock_step.c_str(), &end);
-    const bool at_ok = colon != std::string::npos && end == clock_step.c_str() + colon;
+    const bool at_ok = colon != std::string::npos && colon > 0 && end == clock_step.c_str() + colon;
     const double by = at_ok ? std::strtod(clock_step.c_str() + colon + 1, &end) : 0.0;
     if (!at_ok || *end != '\0' || !(at >= 0.0) || !std::isfinite(by) ||
         colon + 1 == clock_step.size()) {
