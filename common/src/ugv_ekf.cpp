@@ -1,6 +1,7 @@
 #include "colag/common/ugv_ekf.hpp"
 
 #include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
 
 namespace colag {
@@ -11,9 +12,25 @@ bool finite(const Mat3& m) {
 }
 }  // namespace
 
+void UgvEkf::advance(Step& cur, const Step& prev) const {
+  cur.x = prev.x;
+  cur.P = prev.P;
+  propagate(cur.x, cur.P, cur.v, cur.w, to_seconds(cur.t - prev.t), config_.noise,
+            config_.calibration.walk_variance_per_s());
+}
+
+void UgvEkf::clamp_calibration(UgvStateVec& x) const {
+  const OdometryCalibrationModel& m = config_.calibration;
+  x(kScaleV) = std::clamp(x(kScaleV), -m.max_scale, m.max_scale);
+  x(kScaleW) = std::clamp(x(kScaleW), -m.max_scale, m.max_scale);
+  x(kWPerMetre) = std::clamp(x(kWPerMetre), -m.max_omega_per_m_radpm, m.max_omega_per_m_radpm);
+  x(kWBias) = std::clamp(x(kWBias), -m.max_omega_bias_radps, m.max_omega_bias_radps);
+}
+
 void UgvEkf::reset() {
   initialized_ = false;
   consecutive_rejections_ = 0;
+  noise_scale_ = 1.0;
   history_.clear();
   state_ = Step{};
 }
@@ -32,9 +49,7 @@ Status UgvEkf::predict(TimePoint stamp, double v_mps, double omega_radps) {
   step.v = v_mps;
   step.w = omega_radps;
   if (initialized_) {
-    step.x = state_.x;
-    step.P = state_.P;
-    propagate(step.x, step.P, v_mps, omega_radps, to_seconds(stamp - state_.t), config_.noise);
+    advance(step, state_);
     ++counters_.predictions;
   }
   history_.push_overwrite(step);
@@ -43,23 +58,20 @@ Status UgvEkf::predict(TimePoint stamp, double v_mps, double omega_radps) {
 }
 
 void UgvEkf::repropagate(std::size_t from) {
-  for (std::size_t i = from + 1; i < history_.size(); ++i) {
-    const Step& prev = history_[i - 1];
-    Step& cur = history_[i];
-    cur.x = prev.x;
-    cur.P = prev.P;
-    propagate(cur.x, cur.P, cur.v, cur.w, to_seconds(cur.t - prev.t), config_.noise);
-  }
+  for (std::size_t i = from + 1; i < history_.size(); ++i)
+    advance(history_[i], history_[i - 1]);
   state_ = history_.back();
 }
 
 UgvEkf::Update UgvEkf::update(const PoseMeasurement& z) {
-  const Mat3& R = z.covariance;
-  if (!all_finite(z.pose.p) || !std::isfinite(z.pose.yaw_rad) || !finite(R) || R(0, 0) <= 0.0 ||
-      R(1, 1) <= 0.0 || R(2, 2) <= 0.0 || R.determinant() <= 0.0) {
+  const Mat3& reported = z.covariance;
+  if (!all_finite(z.pose.p) || !std::isfinite(z.pose.yaw_rad) || !finite(reported) ||
+      reported(0, 0) <= 0.0 || reported(1, 1) <= 0.0 || reported(2, 2) <= 0.0 ||
+      reported.determinant() <= 0.0) {
     ++counters_.rejected_invalid;
     return Update::kRejectedInvalid;
   }
+  const Mat3 R = noise_scale_ * reported;
   // The newest step at or before the measurement; a measurement newer than every odometry
   // sample applies to the newest state.
   std::size_t k = history_.size();
@@ -78,9 +90,14 @@ UgvEkf::Update UgvEkf::update(const PoseMeasurement& z) {
   Step& at = history_[k - 1];
   const Vec3 zv(z.pose.p.x(), z.pose.p.y(), wrap_angle(z.pose.yaw_rad));
 
+  // The pose from the measurement; the calibration learnt so far is kept (a reset follows a
+  // divergence, which a wrong calibration may have caused: its covariance goes back to the
+  // prior so that it is learnt again quickly).
   const auto initialise = [&](Update result) {
-    at.x = zv;
-    at.P = R;
+    at.x.head<3>() = zv;
+    at.P.setZero();
+    at.P.topLeftCorner<3, 3>() = R;
+    at.P.diagonal().tail<kCalibrationDim>() = config_.calibration.prior_variance();
     initialized_ = true;
     consecutive_rejections_ = 0;
     repropagate(k - 1);
@@ -88,9 +105,9 @@ UgvEkf::Update UgvEkf::update(const PoseMeasurement& z) {
   };
   if (!initialized_) return initialise(Update::kInitialized);
 
-  Vec3 innovation = zv - at.x;
+  Vec3 innovation = zv - at.x.head<3>();
   innovation.z() = wrap_angle(innovation.z());
-  const Mat3 S = at.P + R;
+  const Mat3 S = at.P.topLeftCorner<3, 3>() + R;
   const double d2 = innovation.dot(S.ldlt().solve(innovation));
   if (!(d2 <= config_.gate_chi2)) {
     ++counters_.rejected_gate;
@@ -101,10 +118,22 @@ UgvEkf::Update UgvEkf::update(const PoseMeasurement& z) {
     return Update::kRejectedGate;
   }
   consecutive_rejections_ = 0;
-  const Mat3 K = at.P * S.inverse();
-  const Mat3 IK = Mat3::Identity() - K;
+  if (config_.adapt_measurement_noise) {
+    // E[e e^T] = P + lambda R0: lambda's estimate from this innovation, (e^T R0^-1 e -
+    // tr(R0^-1 P)) / 3, averaged over the window and kept within [1, max].
+    const Mat3 R0inv = reported.inverse();
+    const double sample =
+        (innovation.dot(R0inv * innovation) - (R0inv * at.P.topLeftCorner<3, 3>()).trace()) / 3.0;
+    noise_scale_ += (sample - noise_scale_) / config_.measurement_noise_window;
+    noise_scale_ = std::clamp(noise_scale_, 1.0, config_.max_measurement_noise_scale);
+  }
+  // H = [I3 0]: the measurement sees the pose; the calibration through its correlation.
+  const Eigen::Matrix<double, kUgvStateDim, 3> K = at.P.leftCols<3>() * S.inverse();
+  UgvStateCov IK = UgvStateCov::Identity();
+  IK.leftCols<3>() -= K;
   at.x += K * innovation;
-  at.x.z() = wrap_angle(at.x.z());
+  at.x(2) = wrap_angle(at.x(2));
+  clamp_calibration(at.x);
   at.P = IK * at.P * IK.transpose() + K * R * K.transpose();  // Joseph form
   at.P = 0.5 * (at.P + at.P.transpose());
   ++counters_.updates;

@@ -60,8 +60,8 @@ void BM_PlanningCycle(benchmark::State& state) {
     if (planner->plan(*s.map, start, goal, {}, path) != PlanResult::kOk)
       state.SkipWithError("no path");
     traj.build(path, 0.5, {});
-    predictor.predict({start, -M_PI / 2}, covariance_after_drifting(), traj, 0, *s.map, {},
-                      prediction);
+    predictor.predict_pose({start, -M_PI / 2}, covariance_after_drifting(), traj, 0, *s.map, {},
+                           prediction);
     expansions += planner->last_expansions();
     benchmark::DoNotOptimize(prediction.kind);
   }
@@ -82,8 +82,8 @@ void BM_PredictionOnly(benchmark::State& state) {
   std::size_t i = 0;
   for (auto _ : state) {
     const std::size_t progress = (i += 7) % traj.size();
-    predictor.predict({traj[progress].p, traj[progress].yaw_rad}, covariance_after_drifting(), traj,
-                      progress, *s.map, {}, prediction);
+    predictor.predict_pose({traj[progress].p, traj[progress].yaw_rad}, covariance_after_drifting(),
+                           traj, progress, *s.map, {}, prediction);
     benchmark::DoNotOptimize(prediction.kind);
   }
 }

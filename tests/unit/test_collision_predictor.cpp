@@ -45,7 +45,7 @@ TEST(CollisionPredictor, NothingOnAFreeMapWithZeroCovariance) {
   CollisionPredictor predictor(cfg, forward_noise_only());
   Prediction p;
   const Trajectory traj = straight_trajectory();
-  predictor.predict({Vec2(0, 0.05), 0.0}, Mat3::Zero(), traj, 0, *map, {}, p);
+  predictor.predict_pose({Vec2(0, 0.05), 0.0}, Mat3::Zero(), traj, 0, *map, {}, p);
   EXPECT_EQ(p.kind, CollisionKind::kNone);
   EXPECT_GT(p.ellipses.size(), 40u);  // it did look all the way to the end
 }
@@ -60,7 +60,8 @@ TEST(CollisionPredictor, MeanOnlyHitsWhereTheInflatedUnknownBegins) {
   cfg.use_uncertainty = false;
   CollisionPredictor predictor(cfg, forward_noise_only());
   Prediction p;
-  predictor.predict({Vec2(0, 0.05), 0.0}, Mat3::Identity(), straight_trajectory(), 0, *map, {}, p);
+  predictor.predict_pose({Vec2(0, 0.05), 0.0}, Mat3::Identity(), straight_trajectory(), 0, *map, {},
+                         p);
   ASSERT_EQ(p.kind, CollisionKind::kMap);
   // At 0.5 m/s the centre reaches x = 2.7 at t = 5.4 s (a multiple of the 0.2 s step).
   EXPECT_NEAR(p.time_s, 5.4, 1e-9);
@@ -78,7 +79,7 @@ TEST(CollisionPredictor, ThreeSigmaEllipseHitsEarlierAsHandCalculated) {
   Prediction p;
   Mat3 P = Mat3::Zero();
   P(0, 0) = P(1, 1) = 0.01;  // sigma 0.1 m
-  predictor.predict({Vec2(0, 0.05), 0.0}, P, straight_trajectory(), 0, *map, {}, p);
+  predictor.predict_pose({Vec2(0, 0.05), 0.0}, P, straight_trajectory(), 0, *map, {}, p);
   ASSERT_EQ(p.kind, CollisionKind::kMap);
   // After k steps of 0.2 s, var_x = 0.01 + k * sigma_v^2 * 0.2^2. The ellipse's right end
   // x + 3 sigma_x reaches the blocked cells at 2.7 for the first k with 0.1 k + 3 sigma >= 2.7.
@@ -102,8 +103,8 @@ TEST(CollisionPredictor, AnotherRobotAheadIsARobotConflictNotAMapOne) {
   CollisionPredictor predictor(cfg, forward_noise_only());
   const OtherRobot other{Vec2(4.0, 0.0), 0.75};
   Prediction p;
-  predictor.predict({Vec2(0, 0.05), 0.0}, Mat3::Zero(), straight_trajectory(), 0, *map, {&other, 1},
-                    p);
+  predictor.predict_pose({Vec2(0, 0.05), 0.0}, Mat3::Zero(), straight_trajectory(), 0, *map,
+                         {&other, 1}, p);
   ASSERT_EQ(p.kind, CollisionKind::kRobot);
   EXPECT_NEAR(p.point.x(), 3.3, 0.11);  // where the discs first overlap
 }
@@ -119,8 +120,8 @@ TEST(CollisionPredictor, AnotherRobotCuttingAcrossIsFollowedAlongItsVelocity) {
   // it reaches our path where we do, after about 4 s; driving south it never does.
   for (const double vy : {0.0, 0.5, -0.5}) {
     const OtherRobot other{Vec2(2.0, -2.0), 0.55, Vec2(0.0, vy)};
-    predictor.predict({Vec2(0, 0.05), 0.0}, Mat3::Zero(), straight_trajectory(), 0, *map,
-                      {&other, 1}, p);
+    predictor.predict_pose({Vec2(0, 0.05), 0.0}, Mat3::Zero(), straight_trajectory(), 0, *map,
+                           {&other, 1}, p);
     if (vy > 0.0) {
       ASSERT_EQ(p.kind, CollisionKind::kRobot);
       EXPECT_NEAR(p.point.x(), 2.0, 0.6);
@@ -137,7 +138,8 @@ TEST(CollisionPredictor, GoingFurtherIntoUnknownIsACollisionAtTheFirstStep) {
   auto map = map_with_unknown_ahead();
   CollisionPredictor predictor(PredictorConfig{}, forward_noise_only());
   Prediction p;
-  predictor.predict({Vec2(2.75, 0.05), 0.0}, Mat3::Zero(), straight_trajectory(), 27, *map, {}, p);
+  predictor.predict_pose({Vec2(2.75, 0.05), 0.0}, Mat3::Zero(), straight_trajectory(), 27, *map, {},
+                         p);
   ASSERT_EQ(p.kind, CollisionKind::kMap);
   EXPECT_NEAR(p.time_s, 0.2, 1e-9);  // with the 0.2 s step subtracted: stop now
 }
@@ -165,20 +167,20 @@ TEST(CollisionPredictor, ARobotAlreadyInsideTheInflationMayLeaveButNotGoCloser) 
     return t;
   };
   const Vec2 here(2.82, 0.05);
-  predictor.predict({here, M_PI}, Mat3::Identity() * 1e-4, line(here, Vec2(-1.0, 0.05)), 0, *map,
-                    {}, p);
+  predictor.predict_pose({here, M_PI}, Mat3::Identity() * 1e-4, line(here, Vec2(-1.0, 0.05)), 0,
+                         *map, {}, p);
   EXPECT_EQ(p.kind, CollisionKind::kNone) << "backing away from the box must be allowed";
-  predictor.predict({here, 0.0}, Mat3::Identity() * 1e-4, line(here, Vec2(5.0, 0.05)), 0, *map, {},
-                    p);
+  predictor.predict_pose({here, 0.0}, Mat3::Identity() * 1e-4, line(here, Vec2(5.0, 0.05)), 0, *map,
+                         {}, p);
   ASSERT_EQ(p.kind, CollisionKind::kMap) << "driving towards it must not be";
   EXPECT_LE(p.time_s, 0.6);
   // Sliding along the box face while edging away is allowed (exactly sideways is not: the
   // ellipse grows, so its worst case comes closer); angling in is not.
-  predictor.predict({here, M_PI / 2}, Mat3::Identity() * 1e-4, line(here, Vec2(2.62, 0.9)), 0, *map,
-                    {}, p);
+  predictor.predict_pose({here, M_PI / 2}, Mat3::Identity() * 1e-4, line(here, Vec2(2.62, 0.9)), 0,
+                         *map, {}, p);
   EXPECT_EQ(p.kind, CollisionKind::kNone);
-  predictor.predict({here, 1.2}, Mat3::Identity() * 1e-4, line(here, Vec2(3.1, 0.9)), 0, *map, {},
-                    p);
+  predictor.predict_pose({here, 1.2}, Mat3::Identity() * 1e-4, line(here, Vec2(3.1, 0.9)), 0, *map,
+                         {}, p);
   EXPECT_EQ(p.kind, CollisionKind::kMap);
 }
 
@@ -197,9 +199,9 @@ TEST(CollisionPredictor, ARobotOffItsTrajectoryIsCheckedWhereItIsNotWhereItShoul
   cfg.horizon_m = 5.0;
   CollisionPredictor predictor(cfg, OdometryNoise{0.0, 0.0, 0.0, 0.0});  // point ellipses
   Prediction p;
-  predictor.predict({Vec2(0, 0.05), 0.0}, Mat3::Zero(), straight_trajectory(), 0, *map, {}, p);
+  predictor.predict_pose({Vec2(0, 0.05), 0.0}, Mat3::Zero(), straight_trajectory(), 0, *map, {}, p);
   EXPECT_EQ(p.kind, CollisionKind::kNone) << "on its path";
-  predictor.predict({Vec2(0, 0.38), 0.0}, Mat3::Zero(), straight_trajectory(), 0, *map, {}, p);
+  predictor.predict_pose({Vec2(0, 0.38), 0.0}, Mat3::Zero(), straight_trajectory(), 0, *map, {}, p);
   ASSERT_EQ(p.kind, CollisionKind::kMap) << "0.33 m off its path towards the wall";
   EXPECT_NEAR(p.point.x(), 1.0, 0.15);  // where the wall begins
 }
@@ -214,14 +216,14 @@ TEST(CollisionPredictor, InsideAnotherRobotsDiscItMayLeaveButNotGoCloser) {
   CollisionPredictor predictor(cfg, forward_noise_only());
   const OtherRobot other{Vec2(-1.5, 0.05), 2.5};  // we stand 1.5 m from its centre
   Prediction p;
-  predictor.predict({Vec2(0, 0.05), 0.0}, Mat3::Zero(), straight_trajectory(), 0, *map, {&other, 1},
-                    p);
+  predictor.predict_pose({Vec2(0, 0.05), 0.0}, Mat3::Zero(), straight_trajectory(), 0, *map,
+                         {&other, 1}, p);
   EXPECT_EQ(p.kind, CollisionKind::kNone) << "driving away from it";
   Path back;
   (void)back.waypoints.push_back(Vec2(0.0, 0.05));
   (void)back.waypoints.push_back(Vec2(-5.0, 0.05));
   Trajectory towards;
   ASSERT_TRUE(towards.build(back, 0.5, {}));
-  predictor.predict({Vec2(0, 0.05), M_PI}, Mat3::Zero(), towards, 0, *map, {&other, 1}, p);
+  predictor.predict_pose({Vec2(0, 0.05), M_PI}, Mat3::Zero(), towards, 0, *map, {&other, 1}, p);
   EXPECT_EQ(p.kind, CollisionKind::kRobot) << "driving towards it";
 }

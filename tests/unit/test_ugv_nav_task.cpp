@@ -204,7 +204,9 @@ TEST(UgvNavTask, StopsBeforeTheUnknownAsksForSupportAndGoesOnOnceItIsMapped) {
   const Vec2 ps(rig.support.last.support_point_m[0], rig.support.last.support_point_m[1]);
   EXPECT_NEAR((pc - ps).norm(), 2.0, 1e-9);  // 2 m back along the planned velocity
   EXPECT_LT(ps.x(), pc.x() - 1.9);
-  EXPECT_GT(rig.ugv->waiting_time_s(), 1.5);
+  // It may creep a little closer while its estimate firms up standing (the relative poses
+  // shrink its covariance; the wheel calibration's share stays): most of the 2 s it waited.
+  EXPECT_GT(rig.ugv->waiting_time_s(), 1.0);
 
   rig.publish_map(2.2, -3.2, 9.6, 3.2);  // the UAV has come and mapped the rest
   ASSERT_TRUE(rig.run_until([&] { return rig.ugv->mode() == msg::UgvMode::kArrived; }, 40s));

@@ -38,13 +38,26 @@ CollisionKind CollisionPredictor::check(const Ellipse& e, double t, const MapSto
   return CollisionKind::kNone;
 }
 
-void CollisionPredictor::predict(const Pose2& pose, const Mat3& covariance, const Trajectory& traj,
-                                 std::size_t progress, const MapStore& map,
+void CollisionPredictor::predict_pose(const Pose2& pose, const Mat3& covariance,
+                                      const Trajectory& traj, std::size_t progress,
+                                      const MapStore& map, std::span<const OtherRobot> others,
+                                      Prediction& out) {
+  UgvStateVec x = UgvStateVec::Zero();
+  x.head<2>() = pose.p;
+  x(2) = pose.yaw_rad;
+  UgvStateCov P = UgvStateCov::Zero();
+  P.topLeftCorner<3, 3>() = covariance;
+  predict(x, P, traj, progress, map, others, out);
+}
+
+void CollisionPredictor::predict(const UgvStateVec& state, const UgvStateCov& covariance,
+                                 const Trajectory& traj, std::size_t progress, const MapStore& map,
                                  std::span<const OtherRobot> others, Prediction& out) {
   out.kind = CollisionKind::kNone;
   out.ellipses.clear();
   const double k = config_.use_uncertainty ? config_.k_sigma : 0.0;
-  Mat3 P = config_.use_uncertainty ? covariance : Mat3::Zero();
+  UgvStateCov P = config_.use_uncertainty ? covariance : UgvStateCov::Zero();
+  const Pose2 pose{state.head<2>(), state(2)};
   const auto& g = map.geometry();
 
   // Now: the blocked cells the ellipse overlaps already are excused (collected in the
@@ -102,8 +115,11 @@ void CollisionPredictor::predict(const Pose2& pose, const Mat3& covariance, cons
     i = traj.index_at_time(t0 + t, i);
     const TrajectorySample& s = traj[i];
     if (config_.use_uncertainty) {
-      Vec3 x(s.p.x(), s.p.y(), s.yaw_rad);
-      propagate(x, P, s.v_mps, s.omega_radps, config_.dt_s, noise_);
+      // Linearised about the plan: the sample's pose, the calibration estimated now.
+      UgvStateVec x = state;
+      x.head<2>() = s.p;
+      x(2) = s.yaw_rad;
+      propagate(x, P, s.v_mps, s.omega_radps, config_.dt_s, noise_, walk_);
     }
     if (test(s.p, t, s.yaw_rad)) return;
     if ((s.p - origin).norm() >= config_.horizon_m * horizon_scale_ || i + 1 >= traj.size()) return;

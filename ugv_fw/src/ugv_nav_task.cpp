@@ -50,7 +50,7 @@ UgvNavTask::UgvNavTask(const UgvNavConfig& config, platform::Transport& transpor
       map_(config.map),
       planner_(config.planner),
       controller_(config.controller, config.limits),
-      predictor_(config.predictor, config.ekf.noise),
+      predictor_(config.predictor, config.ekf.noise, config.ekf.calibration),
       support_(config.support),
       blocked_(config.blocked) {
   // Wheel samples are stamped by this board's clock (their order is the EKF's to check); the
@@ -381,8 +381,8 @@ void UgvNavTask::predict_and_request(TimePoint now) {
   if (arrived_ || trajectory_.empty()) {
     prediction_ = Prediction{};
   } else {
-    predictor_.predict(ekf_.pose(), ekf_.covariance(), trajectory_, controller_.progress(), map_,
-                       others_predict_, prediction_);
+    predictor_.predict(ekf_.state(), ekf_.state_covariance(), trajectory_, controller_.progress(),
+                       map_, others_predict_, prediction_);
   }
   // The first colliding ellipse was sampled up to one step after the true first contact.
   const double t_soonest = prediction_.time_s - predictor_.config().dt_s;
@@ -437,7 +437,7 @@ void UgvNavTask::publish_status(TimePoint now) {
     s.position_m[0] = p.p.x();
     s.position_m[1] = p.p.y();
     s.yaw_rad = p.yaw_rad;
-    const Mat3& P = ekf_.covariance();
+    const Mat3 P = ekf_.covariance();
     for (int r = 0; r < 3; ++r) {
       for (int c = 0; c < 3; ++c)
         s.covariance[3 * r + c] = P(r, c);

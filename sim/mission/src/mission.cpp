@@ -453,6 +453,17 @@ void Mission::fly(MissionTrace* trace) {
 
   // Run, watching the truth every 100 ms.
   p.outcomes.assign(ugvs.size(), UgvOutcome{});
+  for (std::size_t i = 0; i < ugvs.size(); ++i) {
+    // What the wheels' errors make of the estimator's calibration: with each encoder reporting
+    // (1 + s) x its wheel, the body's v = (u_l m_l + u_r m_r) / 2 and w = (u_r m_r - u_l m_l) / L
+    // with u = 1 / (1 + s): scale (u_l + u_r) / 2 - 1, drift per metre (u_r - u_l) / L.
+    const sim::UgvBodyConfig& bc = p.world->ugv(static_cast<int>(i)).config();
+    const sim::WheelErrors& e = bc.wheel_errors;
+    const double ul = 1.0 / ((1.0 + e.left_scale) * (1.0 + bc.encoder_bias));
+    const double ur = 1.0 / ((1.0 + e.right_scale) * (1.0 + bc.encoder_bias));
+    p.outcomes[i].calibration_true = {0.5 * (ul + ur) - 1.0, std::nan(""),
+                                      (ur - ul) / bc.geometry.track_width_m, e.yaw_rate_bias_radps};
+  }
   const TimePoint end = time_at_seconds(cfg.max_time_s);
   int tick = 0;
   std::vector<int> open_stops(ugvs.size(), -1);  // index of each UGV's current stop in the trace
@@ -480,6 +491,11 @@ void Mission::fly(MissionTrace* trace) {
         if (std::isfinite(nees)) {
           ++o.nees_samples;
           o.nees_mean += (nees - o.nees_mean) / static_cast<double>(o.nees_samples);
+        }
+        for (std::size_t k = 0; k < o.calibration.size(); ++k) {
+          const int s = kPoseDim + static_cast<int>(k);
+          o.calibration[k] = ekf.state()(s);
+          o.calibration_sigma[k] = std::sqrt(ekf.state_covariance()(s, s));
         }
       }
       o.final_mode = task.mode();

@@ -131,6 +131,16 @@ std::string to_json(const MissionOutcome& o, bool include_wall_time) {
       parts[ugv::to_string(static_cast<ugv::WaitPart>(k))] = u.waiting_parts[k];
     ju["waiting_parts"] = parts;
     ju["nees_mean"] = u.nees_mean;
+    nlohmann::ordered_json cal;
+    const char* const cal_names[] = {"scale", "turn_scale", "drift_per_m", "drift_per_s"};
+    for (std::size_t k = 0; k < u.calibration.size(); ++k) {
+      const double truth = u.calibration_true[k];
+      cal[cal_names[k]] = {{"learnt", u.calibration[k]},
+                           {"sigma", u.calibration_sigma[k]},
+                           {"true", std::isfinite(truth) ? nlohmann::ordered_json(truth)
+                                                         : nlohmann::ordered_json(nullptr)}};
+    }
+    ju["calibration"] = cal;
     if (o.config.clocks.any()) {
       ju["clock_steps"] = u.clock_steps;
       ju["clock_error_s"] = u.clock_error_s;

@@ -58,11 +58,21 @@ void read_ugv_sections(board::Reader& r, const YAML::Node& doc, UgvBoardConfig& 
   sched.transport = sched.transport.at_period(sched.control.period);  // polled every control tick
 
   const YAML::Node odo = child(doc, "odometry");
-  r.only(odo, "odometry", {"timeout_ms", "sigma_v", "sigma_omega"});
+  r.only(odo, "odometry", {"timeout_ms", "sigma_v", "sigma_omega", "calibration"});
   r.millis(odo, "odometry", "timeout_ms", c.nav.odometry_timeout, 10.0, 1000.0);
   // Zero would stop the estimate's uncertainty from growing: never true of wheels.
   r.get(odo, "odometry", "sigma_v", c.nav.ekf.noise.sigma_v_mps, 1e-4, 1.0);
   r.get(odo, "odometry", "sigma_omega", c.nav.ekf.noise.sigma_omega_radps, 1e-4, 1.0);
+  // What the wheel calibration may be off by (1 sigma): the estimator learns the rest.
+  const YAML::Node cal = child(odo, "calibration");
+  const std::string cp = "odometry.calibration";
+  r.only(cal, cp, {"estimate", "scale", "turn_scale", "drift_per_m", "drift_per_s"});
+  OdometryCalibrationModel& m = c.nav.ekf.calibration;
+  r.get(cal, cp, "estimate", m.estimate);
+  r.get(cal, cp, "scale", m.sigma_scale_v, 0.0, 0.3);
+  r.get(cal, cp, "turn_scale", m.sigma_scale_omega, 0.0, 0.3);
+  r.get(cal, cp, "drift_per_m", m.sigma_omega_per_m_radpm, 0.0, 0.5);
+  r.get(cal, cp, "drift_per_s", m.sigma_omega_bias_radps, 0.0, 0.1);
 
   // Checked last, so that a wrong value elsewhere is the error reported first.
   r.require(robot, "robot", "id");

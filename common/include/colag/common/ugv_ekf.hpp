@@ -2,11 +2,18 @@
 // The UGV's pose estimator (paper Sec. III-A): an EKF on (x, y, yaw) predicted with wheel
 // odometry and updated with the UGV pose observed by the UAV (UAV odometry composed with the
 // relative pose). Differences from a textbook EKF, all for robustness on a real robot:
+// - the state carries the wheel odometry's calibration (ugv_motion_model.hpp): scale, turn-rate
+//   scale, heading drift per metre and per second, learnt from the relative poses. Without it a
+//   3 % wheel-radius error made the estimate 10-100 times over-confident (NEES 69-830);
 // - measurements are applied at their own time stamp: the filter keeps ~1 s of odometry
 //   history, updates the state of that time and re-propagates to now (RPE arrives late);
 // - a chi-square gate on the Mahalanobis distance rejects outliers; after many consecutive
 //   rejections the filter re-initialises from the measurement (it had diverged);
-// - the covariance update uses the Joseph form (stays symmetric positive definite).
+// - the covariance update uses the Joseph form (stays symmetric positive definite);
+// - the relative poses' reported covariance is scaled by what their innovations show
+//   (innovation-based covariance matching, Mehra 1972): an AprilTag pose's covariance is a
+//   constant while its true error grows with distance and obliquity. Only up, never below the
+//   reported one, and slowly (over ~50 updates) so that outliers cannot drive it.
 #include <cstdint>
 
 #include "colag/common/geometry.hpp"
@@ -25,8 +32,12 @@ struct PoseMeasurement {
 
 struct UgvEkfConfig {
   OdometryNoise noise;
+  OdometryCalibrationModel calibration;
   double gate_chi2 = 16.27;         // chi-square, 3 dof, 99.9 %: one false reject in 1000
   int reset_after_rejections = 25;  // consecutive gate rejections => re-initialise
+  bool adapt_measurement_noise = true;
+  double max_measurement_noise_scale = 10.0;  // variance factor
+  double measurement_noise_window = 50.0;     // updates averaged
 };
 
 struct UgvEkfCounters {
@@ -60,11 +71,16 @@ class UgvEkf {
   Update update(const PoseMeasurement& z);
   void reset();
 
-  Pose2 pose() const { return {state_.x.head<2>(), state_.x.z()}; }
-  const Vec3& mean() const { return state_.x; }
-  const Mat3& covariance() const { return state_.P; }
+  Pose2 pose() const { return {state_.x.head<2>(), state_.x(2)}; }
+  Vec3 mean() const { return state_.x.head<3>(); }
+  Mat3 covariance() const { return state_.P.topLeftCorner<3, 3>(); }
+  // The whole state: pose and calibration (see ugv_motion_model.hpp).
+  const UgvStateVec& state() const { return state_.x; }
+  const UgvStateCov& state_covariance() const { return state_.P; }
   TimePoint stamp() const { return state_.t; }
   const UgvEkfCounters& counters() const { return counters_; }
+  // The factor the relative poses' covariance is multiplied by (1: as reported).
+  double measurement_noise_scale() const { return noise_scale_; }
   const UgvEkfConfig& config() const { return config_; }
 
  private:
@@ -72,15 +88,18 @@ class UgvEkf {
     TimePoint t;     // end of the step
     double v = 0.0;  // twist applied over the step
     double w = 0.0;
-    Vec3 x = Vec3::Zero();  // state at t (meaningful once initialised)
-    Mat3 P = Mat3::Zero();
+    UgvStateVec x = UgvStateVec::Zero();  // state at t (meaningful once initialised)
+    UgvStateCov P = UgvStateCov::Zero();
   };
   // Re-runs the prediction from history_[from] to the newest entry.
   void repropagate(std::size_t from);
+  void advance(Step& cur, const Step& prev) const;  // cur from prev and cur's twist
+  void clamp_calibration(UgvStateVec& x) const;
 
   UgvEkfConfig config_;
   bool initialized_ = false;
   int consecutive_rejections_ = 0;
+  double noise_scale_ = 1.0;
   Step state_;                          // the newest state
   RingBuffer<Step, kHistory> history_;  // past states, oldest first; back() == state_
   UgvEkfCounters counters_;

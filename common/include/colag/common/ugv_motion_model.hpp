@@ -1,16 +1,37 @@
 #pragma once
-// The differential-drive motion model of the paper's Eq. (3)-(4): state (x, y, yaw), input the
-// wheel-odometry twist (v, omega) over dt:
-//   x' = x + cos(yaw) v dt,  y' = y + sin(yaw) v dt,  yaw' = yaw + omega dt
-//   P' = F P F^T + B Q B^T,  F = df/dstate, B = df/d(v, omega), Q = diag(sigma_v^2, sigma_w^2).
-// Shared by the EKF and the collision predictor (which propagates a copy along the plan).
+// The differential-drive motion model of the paper's Eq. (3)-(4), extended with the wheel
+// odometry's calibration. State (x, y, yaw, a_v, a_w, c, b), input the wheel-odometry twist
+// (v_m, w_m) over dt. The robot's true twist is
+//   v = (1 + a_v) v_m                    a_v: the wheels' scale error (radius off)
+//   w = (1 + a_w) w_m + c v_m + b        a_w: turn-rate scale (track off, skid-steer slip)
+//                                        c:   heading drift per metre (left and right wheels
+//                                             of different size: turns while driving straight)
+//                                        b:   heading drift per second while moving (camber)
+// which is what two wheels with their own scale error and a track error give exactly (up to a
+// v term in w_m small enough to ignore: c L^2 / 4). Then
+//   x' = x + cos(yaw) v dt,  y' = y + sin(yaw) v dt,  yaw' = yaw + w dt,  calibration kept
+//   P' = F P F^T + B Q B^T + W dt,  F = df/dstate, B = df/d(v_m, w_m), Q = the twist's noise,
+//   W = the calibration's random walk (tyres wear, the ground changes).
+// With the calibration zero and its covariance zero this is the paper's 3-state model exactly.
+// Shared by the EKF and the collision predictor, which propagates a copy along the plan: the
+// calibration's uncertainty makes the error grow with the distance ahead, not its square root.
 #include <Eigen/Core>
+#include <cmath>
 
 #include "colag/common/geometry.hpp"
 
 namespace colag {
 
 using Vec3 = Eigen::Vector3d;
+
+inline constexpr int kPoseDim = 3;
+inline constexpr int kCalibrationDim = 4;
+inline constexpr int kUgvStateDim = kPoseDim + kCalibrationDim;
+using UgvStateVec = Eigen::Matrix<double, kUgvStateDim, 1>;
+using UgvStateCov = Eigen::Matrix<double, kUgvStateDim, kUgvStateDim>;
+
+// Indices of the calibration in the state.
+enum UgvStateIndex : int { kScaleV = 3, kScaleW = 4, kWPerMetre = 5, kWBias = 6 };
 
 // Odometry noise, per sample: white noise on the measured twist. The proportional terms model
 // wheel slip (the paper's 1 % multiplicative noise on the true motion).
@@ -21,20 +42,82 @@ struct OdometryNoise {
   double sigma_omega_fraction = 0.01;
 };
 
-inline void propagate(Vec3& x, Mat3& P, double v, double omega, double dt, const OdometryNoise& n) {
-  const double c = std::cos(x.z()), s = std::sin(x.z());
-  Mat3 F = Mat3::Identity();
+// What the robot's wheel odometry may get wrong systematically: the prior (1 sigma) of each
+// calibration state and how fast each may change. Defaults are what an uncalibrated wheeled
+// robot shows: wheel radii within a few percent (tyre wear, pressure, load), left and right
+// differing by as much (0.03 x sqrt(2) / 0.4 m track = 0.1 rad per metre), skid-steer turn
+// rates 5-20 % short of the wheels' on loose ground. A robot calibrated with UMBmark can set
+// smaller priors; `estimate = false` gives the paper's 3-state filter.
+struct OdometryCalibrationModel {
+  bool estimate = true;
+  double sigma_scale_v = 0.03;
+  double sigma_scale_omega = 0.08;
+  double sigma_omega_per_m_radpm = 0.10;
+  double sigma_omega_bias_radps = 0.01;
+  // Random walk, per sqrt(second): the calibration may change over minutes, not seconds.
+  double walk_scale_per_sqrt_s = 0.001;
+  double walk_omega_per_m_per_sqrt_s = 0.002;
+  double walk_omega_bias_per_sqrt_s = 0.0002;
+  // Never believed beyond these (an outlier must not make the robot think it drives in circles).
+  double max_scale = 0.3;
+  double max_omega_per_m_radpm = 0.5;
+  double max_omega_bias_radps = 0.1;
+
+  Eigen::Matrix<double, kCalibrationDim, 1> prior_variance() const {
+    if (!estimate) return Eigen::Matrix<double, kCalibrationDim, 1>::Zero();
+    return {sigma_scale_v * sigma_scale_v, sigma_scale_omega * sigma_scale_omega,
+            sigma_omega_per_m_radpm * sigma_omega_per_m_radpm,
+            sigma_omega_bias_radps * sigma_omega_bias_radps};
+  }
+  Eigen::Matrix<double, kCalibrationDim, 1> walk_variance_per_s() const {
+    if (!estimate) return Eigen::Matrix<double, kCalibrationDim, 1>::Zero();
+    return {walk_scale_per_sqrt_s * walk_scale_per_sqrt_s,
+            walk_scale_per_sqrt_s * walk_scale_per_sqrt_s,
+            walk_omega_per_m_per_sqrt_s * walk_omega_per_m_per_sqrt_s,
+            walk_omega_bias_per_sqrt_s * walk_omega_bias_per_sqrt_s};
+  }
+};
+
+// Below this measured twist the wheels stand still: nothing moves, not even by the bias.
+inline constexpr double kWheelsStill = 1e-4;
+
+// The robot's twist from the measured one and the calibration in `x`.
+inline Eigen::Vector2d calibrated_twist(const UgvStateVec& x, double v_m, double w_m) {
+  const bool moving = std::abs(v_m) + std::abs(w_m) > kWheelsStill;
+  return {(1.0 + x(kScaleV)) * v_m,
+          (1.0 + x(kScaleW)) * w_m + x(kWPerMetre) * v_m + (moving ? x(kWBias) : 0.0)};
+}
+
+// One step of the model. `walk` is the calibration's random walk per second (zero: calibration
+// known, as the predictor uses it when the estimator does not estimate it).
+inline void propagate(UgvStateVec& x, UgvStateCov& P, double v_m, double w_m, double dt,
+                      const OdometryNoise& n,
+                      const Eigen::Matrix<double, kCalibrationDim, 1>& walk) {
+  const double c = std::cos(x(2)), s = std::sin(x(2));
+  const bool moving = std::abs(v_m) + std::abs(w_m) > kWheelsStill;
+  const Eigen::Vector2d tw = calibrated_twist(x, v_m, w_m);
+  const double v = tw(0), w = tw(1);
+  UgvStateCov F = UgvStateCov::Identity();
   F(0, 2) = -s * v * dt;
   F(1, 2) = c * v * dt;
-  Eigen::Matrix<double, 3, 2> B;
-  B << c * dt, 0.0, s * dt, 0.0, 0.0, dt;
-  const double fv = n.sigma_v_fraction * v, fw = n.sigma_omega_fraction * omega;
+  F(0, kScaleV) = c * v_m * dt;
+  F(1, kScaleV) = s * v_m * dt;
+  F(2, kScaleW) = w_m * dt;
+  F(2, kWPerMetre) = v_m * dt;
+  F(2, kWBias) = moving ? dt : 0.0;
+  Eigen::Matrix<double, kUgvStateDim, 2> B = Eigen::Matrix<double, kUgvStateDim, 2>::Zero();
+  B(0, 0) = c * (1.0 + x(kScaleV)) * dt;
+  B(1, 0) = s * (1.0 + x(kScaleV)) * dt;
+  B(2, 0) = x(kWPerMetre) * dt;
+  B(2, 1) = (1.0 + x(kScaleW)) * dt;
+  const double fv = n.sigma_v_fraction * v_m, fw = n.sigma_omega_fraction * w_m;
   const Eigen::Vector2d q(n.sigma_v_mps * n.sigma_v_mps + fv * fv,
                           n.sigma_omega_radps * n.sigma_omega_radps + fw * fw);
-  x.x() += c * v * dt;
-  x.y() += s * v * dt;
-  x.z() = wrap_angle(x.z() + omega * dt);
+  x(0) += c * v * dt;
+  x(1) += s * v * dt;
+  x(2) = wrap_angle(x(2) + w * dt);
   P = F * P * F.transpose() + B * q.asDiagonal() * B.transpose();
+  P.diagonal().tail<kCalibrationDim>() += walk * dt;
 }
 
 }  // namespace colag

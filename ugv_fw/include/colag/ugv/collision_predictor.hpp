@@ -1,6 +1,7 @@
 #pragma once
 // Uncertainty-based collision prediction (paper Sec. III-C): a copy of the EKF covariance is
-// propagated along the planned trajectory (dt 0.2 s) with the same motion model, and each
+// propagated along the planned trajectory (dt 0.2 s) with the same motion model (the whole
+// state's: an uncertain wheel calibration makes the error grow with the distance), and each
 // k-sigma ellipse is rasterised exactly over the CP-Map (unknown = occupied). The first ellipse
 // that touches a blocked cell (or another UGV's disc) is the predicted collision: its centre
 // p_pc, the time t_pc to reach it, and the support point p_ps backed off along the planned
@@ -54,13 +55,19 @@ struct Prediction {
 
 class CollisionPredictor {
  public:
-  CollisionPredictor(const PredictorConfig& config, const OdometryNoise& noise)
-      : config_(config), noise_(noise) {}
+  CollisionPredictor(const PredictorConfig& config, const OdometryNoise& noise,
+                     const OdometryCalibrationModel& calibration = {})
+      : config_(config), noise_(noise), walk_(calibration.walk_variance_per_s()) {}
 
-  // `pose`, `covariance`: the EKF now; the robot is at trajectory sample `progress`.
-  void predict(const Pose2& pose, const Mat3& covariance, const Trajectory& trajectory,
-               std::size_t progress, const MapStore& map, std::span<const OtherRobot> others,
-               Prediction& out);
+  // `state`, `covariance`: the EKF now (pose and calibration); the robot is at trajectory
+  // sample `progress`.
+  void predict(const UgvStateVec& state, const UgvStateCov& covariance,
+               const Trajectory& trajectory, std::size_t progress, const MapStore& map,
+               std::span<const OtherRobot> others, Prediction& out);
+  // A pose whose odometry calibration is known exactly.
+  void predict_pose(const Pose2& pose, const Mat3& covariance, const Trajectory& trajectory,
+                    std::size_t progress, const MapStore& map, std::span<const OtherRobot> others,
+                    Prediction& out);
 
   const PredictorConfig& config() const { return config_; }
   // Shortens the look-ahead (distance and time) to this share of the configured one: the
@@ -80,6 +87,7 @@ class CollisionPredictor {
   static constexpr double kDistanceSearch_m = 1.0;
   PredictorConfig config_;
   OdometryNoise noise_;
+  Eigen::Matrix<double, kCalibrationDim, 1> walk_;
   double horizon_scale_ = 1.0;
   // Blocked cells under the current ellipse (ascending indices): touching them is not news.
   StaticVector<std::uint32_t, kMaxExcused> excused_;

@@ -35,6 +35,12 @@ struct UgvOutcome {
   // covariance is honest, far more when it is over-confident.
   double nees_mean = 0.0;
   std::uint64_t nees_samples = 0;
+  // The wheel-odometry calibration its estimator learnt (scale, turn_scale, drift_per_m,
+  // drift_per_s; see ugv_motion_model.hpp), its 1-sigma, and what the simulated wheels have
+  // (NaN for the turn scale: the skid's share depends on how hard it turns).
+  std::array<double, 4> calibration{};
+  std::array<double, 4> calibration_sigma{};
+  std::array<double, 4> calibration_true{};
   // Fleet time (see ugv/fleet_clock.hpp): the UAV clock's steps it followed, and the error bound
   // it reported at the end (< 0: not synchronised).
   std::uint64_t clock_steps = 0;
