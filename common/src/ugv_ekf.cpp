@@ -31,6 +31,8 @@ void UgvEkf::reset() {
   initialized_ = false;
   consecutive_rejections_ = 0;
   noise_scale_ = 1.0;
+  noise_mean_ = 1.0;
+  noise_samples_ = 0.0;
   history_.clear();
   state_ = Step{};
 }
@@ -120,21 +122,28 @@ UgvEkf::Update UgvEkf::update(const PoseMeasurement& z) {
   consecutive_rejections_ = 0;
   if (config_.adapt_measurement_noise) {
     // E[e e^T] = P + lambda R0: lambda's estimate from this innovation, (e^T R0^-1 e -
-    // tr(R0^-1 P)) / 3, averaged over the window and kept within [1, max].
+    // tr(R0^-1 P)) / 3, averaged (a plain mean at first, then over the window) and used within
+    // [1, max].
     const Mat3 R0inv = reported.inverse();
     const double sample =
         (innovation.dot(R0inv * innovation) - (R0inv * at.P.topLeftCorner<3, 3>()).trace()) / 3.0;
-    noise_scale_ += (sample - noise_scale_) / config_.measurement_noise_window;
-    noise_scale_ = std::clamp(noise_scale_, 1.0, config_.max_measurement_noise_scale);
+    noise_samples_ = std::min(noise_samples_ + 1.0, config_.measurement_noise_window);
+    noise_mean_ += (sample - noise_mean_) / noise_samples_;
+    noise_scale_ = std::clamp(noise_mean_, 1.0, config_.max_measurement_noise_scale);
   }
+  // Huber: a measurement further out than the robust bound (inside the gate) counts less, as if
+  // its covariance were larger by sqrt(d2 / bound): a moderate outlier (a tag half a metre off,
+  // inside the gate of an uncertain state) pulls the estimate less.
+  const Mat3 Ru = d2 > config_.robust_chi2 ? std::sqrt(d2 / config_.robust_chi2) * R : R;
+  const Mat3 Su = at.P.topLeftCorner<3, 3>() + Ru;
   // H = [I3 0]: the measurement sees the pose; the calibration through its correlation.
-  const Eigen::Matrix<double, kUgvStateDim, 3> K = at.P.leftCols<3>() * S.inverse();
+  const Eigen::Matrix<double, kUgvStateDim, 3> K = at.P.leftCols<3>() * Su.inverse();
   UgvStateCov IK = UgvStateCov::Identity();
   IK.leftCols<3>() -= K;
   at.x += K * innovation;
   at.x(2) = wrap_angle(at.x(2));
   clamp_calibration(at.x);
-  at.P = IK * at.P * IK.transpose() + K * R * K.transpose();  // Joseph form
+  at.P = IK * at.P * IK.transpose() + K * Ru * K.transpose();  // Joseph form
   at.P = 0.5 * (at.P + at.P.transpose());
   ++counters_.updates;
   repropagate(k - 1);

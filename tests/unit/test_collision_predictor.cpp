@@ -227,3 +227,34 @@ TEST(CollisionPredictor, InsideAnotherRobotsDiscItMayLeaveButNotGoCloser) {
   predictor.predict_pose({Vec2(0, 0.05), M_PI}, Mat3::Zero(), towards, 0, *map, {&other, 1}, p);
   EXPECT_EQ(p.kind, CollisionKind::kRobot) << "driving towards it";
 }
+
+// A UGV long without a relative pose: its 3-sigma ellipse (1.2 m) already reaches into a wall
+// beside its path. Edging away from the wall, each step is "no closer" by its estimate, yet the
+// estimate can be 0.75 m off: it must stop and ask for support, not drive on beside the wall.
+// With a small ellipse the same path is clear.
+TEST(CollisionPredictor, AnEllipseReachingIntoAWallNowMayNotDriveOnBesideIt) {
+  auto map = std::make_unique<MapStore>();
+  ASSERT_TRUE(test::fill_map(*map, -3, -3, 13, 3, [](const Vec2& p) {
+    return p.y() > 0.8 && p.y() < 1.2 && p.x() > -2.0 && p.x() < 8.0 ? CellState::kOccupied
+                                                                     : CellState::kFree;
+  }));
+  Path path;
+  (void)path.waypoints.push_back(Vec2(0.0, 0.05));
+  (void)path.waypoints.push_back(Vec2(10.0, -0.5));  // away from the wall, slowly
+  Trajectory away;
+  ASSERT_TRUE(away.build(path, 0.5, {}));
+  PredictorConfig cfg;
+  cfg.horizon_m = 3.0;
+  OdometryCalibrationModel known;
+  known.estimate = false;
+  // The ellipses keep their size: each step, the worst case is a little further from the wall.
+  CollisionPredictor predictor(cfg, OdometryNoise{0.0, 0.0, 0.0, 0.0}, known);
+  Prediction p;
+  predictor.predict_pose({Vec2(0, 0.05), away[0].yaw_rad}, Mat3(Vec3(0.16, 0.16, 0.0).asDiagonal()),
+                         away, 0, *map, {}, p);
+  ASSERT_EQ(p.kind, CollisionKind::kMap);
+  EXPECT_LE(p.time_s, 0.4);
+  predictor.predict_pose({Vec2(0, 0.05), away[0].yaw_rad},
+                         Mat3(Vec3(0.0025, 0.0025, 0.0).asDiagonal()), away, 0, *map, {}, p);
+  EXPECT_EQ(p.kind, CollisionKind::kNone);
+}

@@ -245,6 +245,24 @@ TEST(UgvEkf, RejectsAMeasurementFarOutsideTheGateThenResetsIfItPersists) {
             UgvEkf::Update::kApplied);
 }
 
+TEST(UgvEkf, AMeasurementBeyondTheRobustBoundPullsLessThanOneInside) {
+  // sigma 0.2 m on both sides: a measurement 0.9 m off has d2 = 10.1, inside the gate (16.27)
+  // but beyond the robust bound (7.81). A plain update would move the estimate half way.
+  const auto moved_by = [](double robust_chi2, double offset) {
+    UgvEkfConfig cfg = white_noise_config();
+    cfg.robust_chi2 = robust_chi2;
+    UgvEkf ekf(cfg);
+    EXPECT_EQ(ekf.update({TimePoint{}, {Vec2(0, 0), 0.0}, rpe_covariance()}),
+              UgvEkf::Update::kInitialized);
+    EXPECT_EQ(ekf.update({TimePoint{}, {Vec2(offset, 0), 0.0}, rpe_covariance()}),
+              UgvEkf::Update::kApplied);
+    return ekf.mean().x();
+  };
+  EXPECT_NEAR(moved_by(16.27, 0.9), 0.45, 1e-9);
+  EXPECT_LT(moved_by(7.81, 0.9), 0.43);
+  EXPECT_NEAR(moved_by(7.81, 0.5), 0.25, 1e-9);  // inside the bound: a plain update
+}
+
 TEST(UgvEkf, AngleWrapAcrossPlusMinusPi) {
   UgvEkf ekf;
   ASSERT_EQ(ekf.update({TimePoint{}, {Vec2(0, 0), 3.10}, rpe_covariance()}),

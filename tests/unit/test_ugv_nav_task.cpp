@@ -27,6 +27,7 @@ class MiniWorld final : public platform::Task {
       : truth(start), bus_(bus), odo_(odo), drive_(drive), uav_(uav) {}
   const char* name() const override { return "world"; }
   Status init(TimePoint) override { return clock_.attach(bus_, 0); }
+  void move_uav(const Vec3& to) { uav_ = to; }
   void step(TimePoint now) override {
     clock_.step(now);  // the UAV answers the UGV's clock requests
     const double dt = 0.02;
@@ -226,6 +227,32 @@ TEST(UgvNavTask, PersistentOverrunsShortenThePredictionButItStillStopsBeforeTheU
   EXPECT_EQ(rig.ugv->health().degradation, OverrunGovernor::kMaxLevel);
   EXPECT_GT(rig.ugv->health().overruns, 30u);
   EXPECT_GE(rig.support.requests, 1);  // later than with the full look-ahead, but asked
+}
+
+// 7 m without a relative pose: its estimate says "at the goal" but 3 sigma is well over 0.3 m.
+// It must not call that arrived: it stands and asks the UAV to come to the goal, and arrives
+// once a relative pose there confirms it (or takes it the rest of the way).
+TEST(UgvNavTask, AtItsGoalByAnUncertainEstimateItAsksForAFixBeforeArriving) {
+  Rig rig(Vec2(7.0, 0.0));
+  rig.publish_map(-3.2, -6.4, 9.6, 6.4);
+  rig.ex.run_until(TimePoint{1s});
+  ASSERT_EQ(rig.ugv->mode(), msg::UgvMode::kDriving);
+  rig.world->rpe_on = false;
+  ASSERT_TRUE(rig.run_until(
+      [&] {
+        return rig.ugv->mode() == msg::UgvMode::kWaitingForSupport &&
+               (rig.ugv->estimator().pose().p - Vec2(7.0, 0.0)).norm() < 0.2;
+      },
+      30s));
+  rig.ex.run_until(rig.ex.now() + 2s);
+  EXPECT_EQ(rig.ugv->mode(), msg::UgvMode::kWaitingForSupport);
+  ASSERT_GE(rig.support.requests, 1);
+  EXPECT_FALSE(rig.support.last.cancel);
+  EXPECT_NEAR(rig.support.last.collision_point_m[0], 7.0, 1e-9);  // "come to my goal"
+  rig.world->move_uav(Vec3(7.0, 0.0, 2.0));
+  rig.world->rpe_on = true;
+  ASSERT_TRUE(rig.run_until([&] { return rig.ugv->mode() == msg::UgvMode::kArrived; }, 20s));
+  EXPECT_LT((rig.world->truth.p - Vec2(7.0, 0.0)).norm(), 0.35);
 }
 
 TEST(UgvNavTask, WheelOdometryLossStopsTheRobotAndReportsAFault) {

@@ -89,7 +89,7 @@ void UgvNavTask::control_step(TimePoint now) {
   drive(now, dt);
   // Standing still before the goal is waiting, whatever the reason (see waiting.hpp): by the
   // wheels, which brake and pull away as the robot does (the command leads them).
-  if (!arrived_ && (std::abs(wheel_speed_) < kStillSpeed_mps || fault_)) {
+  if (!arrived_ && (still_speed_ < kStillSpeed_mps || fault_)) {
     const WaitPart part = wait_part(mode_, blocked_reason_, health_.plans > health_.plan_failures,
                                     !trajectory_.empty());
     waiting_parts_[static_cast<std::size_t>(part)] += seconds(dt);
@@ -106,6 +106,9 @@ void UgvNavTask::read_odometry(TimePoint now) {
     }
     wheel_speed_ = s.v_mps;
     wheel_omega_ = s.omega_radps;
+    // Averaged over ~4 samples for the standing-still test: one sample's noise (3 cm/s) would
+    // count a robot creeping at 6 cm/s as standing.
+    still_speed_ += 0.25 * (std::abs(s.v_mps) - still_speed_);
   }
   // Watchdog: a blind robot without odometry does not know where it is going.
   const TimePoint last = odometry_.last_sample_time();
@@ -191,6 +194,9 @@ void UgvNavTask::command(TimePoint now, double v, double omega) {
 }
 
 void UgvNavTask::drive(TimePoint now, double dt) {
+  // A relative pose came: it is sure enough now, or it learnt that it is not there yet.
+  if (awaiting_fix_ && position_uncertainty_m() <= config_.arrival_max_uncertainty_m)
+    awaiting_fix_ = false;
   if (fault_) {
     mode_ = msg::UgvMode::kFault;
   } else if (blocked_.blocked()) {
@@ -199,7 +205,7 @@ void UgvNavTask::drive(TimePoint now, double dt) {
     mode_ = msg::UgvMode::kWaitingForInit;
   } else if (arrived_) {
     mode_ = msg::UgvMode::kArrived;
-  } else if (stopped_for_support_) {
+  } else if (stopped_for_support_ || awaiting_fix_) {
     mode_ = msg::UgvMode::kWaitingForSupport;
   } else if (no_path_) {
     mode_ = msg::UgvMode::kNoPath;
@@ -217,8 +223,14 @@ void UgvNavTask::drive(TimePoint now, double dt) {
   const ControlOutput out = controller_.step(ekf_.pose(), trajectory_, dt);
   cross_track_m_ = out.cross_track_m;
   if (out.at_goal && (ekf_.pose().p - config_.goal).norm() <= config_.controller.goal_tolerance_m) {
-    arrived_ = true;
-    mode_ = msg::UgvMode::kArrived;
+    if (position_uncertainty_m() <= config_.arrival_max_uncertainty_m) {
+      arrived_ = true;
+      mode_ = msg::UgvMode::kArrived;
+    } else {
+      awaiting_fix_ = true;
+      mode_ = msg::UgvMode::kWaitingForSupport;
+      controller_.hold();
+    }
     command(now, 0.0, 0.0);
     return;
   }
@@ -408,16 +420,26 @@ void UgvNavTask::predict_and_request(TimePoint now) {
       break;
   }
   if (was_stopped && !stopped_for_support_ && !stopped_for_robot_) replan_requested_ = true;
+  if (awaiting_fix_) {  // the UAV to come to the goal and see it there
+    need.needed = true;
+    need.collision_point = config_.goal;
+    need.support_point = ekf_.pose().p;
+    need.time_to_collision_s = 0.0;
+  }
   blocked_.update(now, standing_reason());
   if (blocked_.blocked()) need = SupportNeed{};  // let the UAV serve the others for a while
   msg::CollisionInfo ci;
   if (support_.update(now, config_.id, need, ci)) publish_request(ci);
 }
 
+double UgvNavTask::position_uncertainty_m() const {
+  return sigma_ellipse(ekf_.pose().p, ekf_.covariance().topLeftCorner<2, 2>(), 3.0).axes().a_m;
+}
+
 msg::BlockedReason UgvNavTask::standing_reason() const {
   if (arrived_ || fault_) return msg::BlockedReason::kNone;  // done, or its own mode
   if (no_path_ || trajectory_.empty()) return msg::BlockedReason::kNoPath;
-  if (stopped_for_support_) return msg::BlockedReason::kNotCleared;
+  if (stopped_for_support_ || awaiting_fix_) return msg::BlockedReason::kNotCleared;
   if (stopped_for_robot_) return msg::BlockedReason::kRobotInTheWay;
   return msg::BlockedReason::kNone;
 }

@@ -34,6 +34,7 @@ struct UgvEkfConfig {
   OdometryNoise noise;
   OdometryCalibrationModel calibration;
   double gate_chi2 = 16.27;         // chi-square, 3 dof, 99.9 %: one false reject in 1000
+  double robust_chi2 = 7.81;        // 95 %: beyond it a measurement is down-weighted (Huber)
   int reset_after_rejections = 25;  // consecutive gate rejections => re-initialise
   bool adapt_measurement_noise = true;
   double max_measurement_noise_scale = 10.0;  // variance factor
@@ -99,7 +100,9 @@ class UgvEkf {
   UgvEkfConfig config_;
   bool initialized_ = false;
   int consecutive_rejections_ = 0;
-  double noise_scale_ = 1.0;
+  double noise_scale_ = 1.0;  // what is used: noise_mean_ within [1, max]
+  double noise_mean_ = 1.0;
+  double noise_samples_ = 0.0;
   Step state_;                          // the newest state
   RingBuffer<Step, kHistory> history_;  // past states, oldest first; back() == state_
   UgvEkfCounters counters_;

@@ -43,6 +43,10 @@ struct UgvNavConfig {
   Duration replan_period = std::chrono::seconds(1);
   Duration no_path_retry = std::chrono::seconds(1);
   double replan_cross_track_m = 0.5;  // off the path by more than this => replan
+  // At its goal by its estimate, it has arrived only when this sure (3-sigma position, m) of
+  // being there; otherwise it asks the UAV for a relative pose there. (A UGV 0.69 m off its goal
+  // said "arrived" after a long leg without a relative pose.)
+  double arrival_max_uncertainty_m = 0.3;
   // Encoder frames come at 50 Hz: three missing ones mean a fault. With the 20 ms control loop
   // the robot is commanded to zero within 80 ms (+ scheduling jitter) of the last frame.
   Duration odometry_timeout = std::chrono::milliseconds(60);

@@ -113,6 +113,7 @@ class UgvNavTask {
   }
   void sum_stamp_counters();
   msg::BlockedReason standing_reason() const;
+  double position_uncertainty_m() const;  // 3-sigma semi-major axis of its position estimate
   void command(TimePoint now, double v, double omega);
 
   UgvNavConfig config_;
@@ -152,6 +153,7 @@ class UgvNavTask {
   msg::BlockedReason blocked_reason_ = msg::BlockedReason::kNone;  // set with mode_
   bool fault_ = false;
   bool stopped_for_support_ = false;
+  bool awaiting_fix_ = false;  // at the goal by its estimate, not sure enough to have arrived
   bool stopped_for_robot_ = false;
   bool arrived_ = false;
   bool replan_requested_ = true;
@@ -165,6 +167,7 @@ class UgvNavTask {
   double cross_track_m_ = 0.0;
   double v_cmd_ = 0.0;
   double wheel_speed_ = 0.0;  // the newest wheel odometry's twist
+  double still_speed_ = 0.0;  // |v| of the last few samples
   double wheel_omega_ = 0.0;
   double omega_cmd_ = 0.0;
   UgvHealth health_;
