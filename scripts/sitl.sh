@@ -4,7 +4,7 @@
 # talking only over Cyclone DDS.
 #   scripts/sitl.sh [--ugvs N] [--scenario sparse|dense] [--seed S] [--max-time S]
 #                   [--json OUT] [--netns] [--loss PCT] [--domain D] [--build DIR]
-#                   [--time-scale X]
+#                   [--time-scale X] [--kill-ugv I@T [--restart-after S]]
 # Waits for the mission to end, writes the metrics JSON (colag_sim's schema; default
 # build/sitl/run-<pid>/metrics.json), stops every process by PID, prints a summary, and exits 0 when
 # every UGV reached its goal with no collision (1 otherwise, 2 on a usage or set-up error, 77
@@ -18,12 +18,15 @@
 #               real time); they all scale CLOCK_MONOTONIC alike, so they agree on the time.
 #   --domain D  the robots' DDS domain (the sim link uses D + 1); default: a free one. Every run
 #               holds its domain (a lock per domain), so runs at the same time never share one.
+#   --kill-ugv I@T  kills UGV I's ugv_fw (SIGKILL: a crash) at mission time T s; the world keeps
+#               its body where it stopped. --restart-after S starts it again S s later, with the
+#               same configuration: it resumes from the pose it kept (robot.state_file).
 # Logs and configurations: build/sitl/run-<pid>/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 ugvs=3 scenario=dense seed=1 max_time=400 json="" netns=0 loss=0 scale=1
-build=build/host domain=""
+build=build/host domain="" kill_ugv="" restart_after=""
 usage() { sed -n '2,23p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
 while (($#)); do
   case "$1" in
@@ -37,12 +40,22 @@ while (($#)); do
     --domain) domain=$2; shift 2 ;;
     --build) build=$2; shift 2 ;;
     --time-scale) scale=$2; shift 2 ;;
+    --kill-ugv) kill_ugv=$2; shift 2 ;;
+    --restart-after) restart_after=$2; shift 2 ;;
     *) usage ;;
   esac
 done
 [[ $ugvs =~ ^[0-9]+$ ]] && ((ugvs >= 1 && ugvs <= 16)) || { echo "sitl: --ugvs must be 1..16" >&2; exit 2; }
 [[ $loss =~ ^[0-9]+$ ]] && ((loss <= 100)) || { echo "sitl: --loss must be 0..100" >&2; exit 2; }
 ((loss == 0 || netns)) || { echo "sitl: --loss needs --netns (loss is injected per namespace)" >&2; exit 2; }
+number='^[0-9]+([.][0-9]+)?$'
+if [ -n "$kill_ugv" ]; then
+  [[ $kill_ugv =~ ^([0-9]+)@([0-9]+([.][0-9]+)?)$ ]] && ((BASH_REMATCH[1] < ugvs)) ||
+    { echo "sitl: --kill-ugv wants I@T with I < --ugvs and T seconds, e.g. 1@40" >&2; exit 2; }
+  kill_id=${BASH_REMATCH[1]} kill_at=${BASH_REMATCH[2]}
+fi
+[ -z "$restart_after" ] || { [[ $restart_after =~ $number ]] && [ -n "$kill_ugv" ]; } ||
+  { echo "sitl: --restart-after wants seconds, with --kill-ugv" >&2; exit 2; }
 for p in colag_world uav_fw ugv_fw; do
   [ -x "$build/bin/$p" ] || { echo "sitl: $build/bin/$p missing: build the host preset first" >&2; exit 2; }
 done
@@ -98,7 +111,7 @@ YAML
 for ((i = 0; i < ugvs; ++i)); do
   x=$(lane_x "$i")
   cat >"$run/ugv$i.yaml" <<YAML
-robot: {id: $i, goal: [$x, -16.0], start_guess: [$x, 16.0, -1.5707963]}
+robot: {id: $i, goal: [$x, -16.0], start_guess: [$x, 16.0, -1.5707963], state_file: $run/ugv$i.state}
 dds: {domain: $domain}
 realtime: {fifo_priority: 0, lock_memory: false}
 can: {interface: sim}
@@ -108,6 +121,12 @@ done
 pids=() namespaces=()
 ns_of=()  # namespace of each robot (empty: none)
 cleanup() {
+  # The kill/restart job, and the program it started again.
+  [ -z "${killer:-}" ] || kill "$killer" 2>/dev/null || true
+  if [ -n "${run:-}" ] && [ -s "$run/restarted.pid" ]; then
+    pids+=("$(cat "$run/restarted.pid")")
+    rm -f "$run/restarted.pid"
+  fi
   for pid in "${pids[@]}"; do kill -TERM "$pid" 2>/dev/null || true; done
   for _ in $(seq 50); do
     alive=0
@@ -169,10 +188,14 @@ in_ns() {  # namespace command...
   if [ -n "$1" ]; then local ns=$1; shift; exec ip netns exec "$ns" "$@"; else shift; exec "$@"; fi
 }
 
+# A killed robot is silent until it is started again (and found by DDS discovery).
+silence=5
+[ -z "$kill_ugv" ] || silence=$(awk -v r="${restart_after:-1e6}" 'BEGIN {print r + 30}')
 echo "sitl: $scenario, $ugvs UGVs, seed $seed, time x$scale, DDS domain $domain (sim link $((domain + 1)))$( ((netns)) && echo ", one network namespace per robot")$( ((loss)) && echo ", $loss % loss")"
 echo "sitl: logs and configs in $run"
 in_ns "$hub" "$build/bin/colag_world" --scenario "$scenario" --ugvs "$ugvs" --seed "$seed" \
-  --domain "$domain" --max-time "$max_time" --json "$json" --time-scale "$scale" >"$run/world.log" 2>&1 &
+  --domain "$domain" --max-time "$max_time" --json "$json" --time-scale "$scale" \
+  --max-silence "$silence" >"$run/world.log" 2>&1 &
 world=$!
 pids+=("$world")
 in_ns "${ns_of[0]}" "$build/bin/uav_fw" --config "$run/uav.yaml" --time-scale "$scale" >"$run/uav.log" 2>&1 &
@@ -182,6 +205,21 @@ for ((i = 0; i < ugvs; ++i)); do
   pids+=($!)
 done
 start=$(date +%s)
+if [ -n "$kill_ugv" ]; then
+  # Mission time runs `scale` times the wall clock from the world's start.
+  victim=${pids[$((kill_id + 2))]}
+  (
+    sleep "$(awk -v t="$kill_at" -v s="$scale" 'BEGIN {print t / s}')"
+    kill -KILL "$victim" 2>/dev/null && echo "  sitl: killed UGV $kill_id's ugv_fw (pid $victim) at t ~ $kill_at s"
+    [ -n "$restart_after" ] || exit 0
+    sleep "$(awk -v t="$restart_after" -v s="$scale" 'BEGIN {print t / s}')"
+    in_ns "${ns_of[$((kill_id + 1))]}" "$build/bin/ugv_fw" --config "$run/ugv$kill_id.yaml" \
+      --time-scale "$scale" >"$run/ugv$kill_id.restart.log" 2>&1 &
+    echo "$!" >"$run/restarted.pid"
+    echo "  sitl: started UGV $kill_id's ugv_fw again (pid $!) at t ~ $(awk -v a="$kill_at" -v b="$restart_after" 'BEGIN {print a + b}') s"
+  ) &
+  killer=$!
+fi
 tail -f "$run/world.log" --pid "$world" 2>/dev/null | sed -u 's/^/  /' &
 tailer=$!
 set +e

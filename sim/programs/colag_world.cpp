@@ -96,12 +96,14 @@ struct RobotTraffic final : platform::SampleSink {
 class Monitor final : public platform::Task {
  public:
   Monitor(const mission::MissionConfig& cfg, sim::SimWorld& world, RobotTraffic& traffic,
-          platform::RealtimeExecutor& exec, double start_timeout_s, bool quiet)
+          platform::RealtimeExecutor& exec, double start_timeout_s, double max_silence_s,
+          bool quiet)
       : cfg_(cfg),
         world_(world),
         traffic_(traffic),
         exec_(exec),
         start_timeout_s_(start_timeout_s),
+        max_silence_s_(max_silence_s),
         quiet_(quiet),
         reach_s_(static_cast<std::size_t>(cfg.ugvs), -1.0),
         reached_(reach_s_.size(), false) {}
@@ -127,7 +129,7 @@ class Monitor final : public platform::Task {
     int reached = 0;
     for (int i = 0; i < cfg_.ugvs; ++i) {
       const auto k = static_cast<std::size_t>(i);
-      if (to_seconds(now - traffic_.heard[k]) > 5.0) {
+      if (to_seconds(now - traffic_.heard[k]) > max_silence_s_) {
         failure_ = "UGV " + std::to_string(i) + "'s firmware went silent";
         exec_.request_stop();
         return;
@@ -170,6 +172,7 @@ class Monitor final : public platform::Task {
   RobotTraffic& traffic_;
   platform::RealtimeExecutor& exec_;
   double start_timeout_s_;
+  double max_silence_s_;
   bool quiet_;
   bool started_ = false;
   TimePoint created_{}, t0_{};
@@ -187,6 +190,7 @@ int run(int argc, char** argv) {
   std::string json_path;
   std::uint32_t domain = 0;
   double start_timeout_s = 60.0;
+  double max_silence_s = 5.0;
   double time_scale = 1.0;
   bool quiet = false;
   app.add_option("--scenario", cfg.scenario, "sparse | dense")
@@ -200,6 +204,9 @@ int run(int argc, char** argv) {
   app.add_option("--max-time", cfg.max_time_s, "mission time limit, s")
       ->check(sim::positive_up_to(1e6));
   app.add_option("--start-timeout", start_timeout_s, "how long to wait for the robots, s")
+      ->check(sim::positive_up_to(1e6));
+  app.add_option("--max-silence", max_silence_s,
+                 "a robot silent this long ends the run (exit 3), s (a restart takes longer)")
       ->check(sim::positive_up_to(1e6));
   app.add_option("--lidar-columns", cfg.lidar_columns, "LiDAR horizontal resolution")
       ->check(CLI::Range(60, static_cast<int>(limits::kMaxLidarColumns)));
@@ -260,7 +267,7 @@ int run(int argc, char** argv) {
   WorldStep world_step(world);
   BridgeStep bridge_step(bridge);
   platform::TransportPump pump(dds);
-  Monitor monitor(cfg, world, traffic, exec, start_timeout_s, quiet);
+  Monitor monitor(cfg, world, traffic, exec, start_timeout_s, max_silence_s, quiet);
   st = exec.add({&bridge_step, 10ms, 5ms});
   if (st) st = exec.add({&world_step, 20ms, 15ms});
   if (st) st = exec.add({&pump, 10ms, 5ms});

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "colag/board/program.hpp"
+#include "colag/ugv/app/resume_state.hpp"
 #include "colag/ugv/app/ugv_board.hpp"
 #include "colag/ugv/app/ugv_config.hpp"
 
@@ -26,7 +27,22 @@ void describe(const ugv::UgvBoardConfig& cfg) {
               cfg.common.dds_domain);
 }
 
-int run(const ugv::UgvBoardConfig& cfg, const board::ProgramArgs& args) {
+int run(const ugv::UgvBoardConfig& config, const board::ProgramArgs& args) {
+  ugv::UgvBoardConfig cfg = config;
+  // Started again mid-mission: where it stood, not where the mission started.
+  if (!cfg.state_file.empty()) {
+    std::string why;
+    if (const auto kept = ugv::load_resume_state(cfg.state_file, cfg.state_max_age_s, why)) {
+      cfg.nav.has_start_guess = true;
+      cfg.nav.start_guess = kept->pose;
+      std::printf("ugv_fw: resuming at (%.2f, %.2f, %.2f rad), kept %.0f s ago in %s\n",
+                  kept->pose.p.x(), kept->pose.p.y(), kept->pose.yaw_rad, kept->age_s,
+                  cfg.state_file.c_str());
+    } else if (!why.empty()) {
+      std::printf("ugv_fw: not resuming: %s; starting from the configured start guess\n",
+                  why.c_str());
+    }
+  }
   if (args.time_scale != 1.0 && cfg.can_interface != "sim") {
     std::fprintf(stderr,
                  "ugv_fw: --time-scale is for the simulated CAN bus (can.interface: sim)\n");

@@ -1,7 +1,10 @@
 #include "colag/ugv/app/ugv_board.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
+
+#include "colag/ugv/app/resume_state.hpp"
 
 namespace colag::ugv {
 
@@ -73,7 +76,21 @@ bool UgvBoard::start(std::string& error) {
 }
 
 void UgvBoard::run(TimePoint end) {
-  executor_.run_until(end);
+  // In one-second slices: between them (on this thread, between the task's steps) the pose is
+  // kept for a restart. A slice ends at a release time, so the table's phase is unchanged.
+  while (!executor_.stop_requested()) {
+    const TimePoint now = executor_.clock().now();
+    if (now >= end) break;
+    executor_.run_until(std::min(end, now + std::chrono::seconds(1)));
+    keep_state();
+  }
+}
+
+void UgvBoard::keep_state() {
+  if (config_.state_file.empty() || !task_ || !task_->estimator().initialized()) return;
+  std::string error;
+  if (save_resume_state(config_.state_file, task_->estimator().pose(), error)) return;
+  if (state_errors_++ == 0) std::fprintf(stderr, "ugv_fw: %s (pose not kept)\n", error.c_str());
 }
 
 bool UgvBoard::stop_motors() {

@@ -16,7 +16,8 @@ std::uint32_t can_id(board::Reader& r, const YAML::Node& can, const char* key, s
 // The UGV's own sections; `doc` is const: const access never inserts keys.
 void read_ugv_sections(board::Reader& r, const YAML::Node& doc, UgvBoardConfig& c) {
   const YAML::Node robot = child(doc, "robot");
-  r.only(robot, "robot", {"id", "goal", "start_guess", "radius_m"});
+  r.only(robot, "robot",
+         {"id", "goal", "start_guess", "radius_m", "state_file", "state_max_age_s"});
   int id = 1;
   r.get(robot, "robot", "id", id, 0, static_cast<int>(limits::kMaxUgvs) - 1);
   c.nav.id = static_cast<RobotId>(id);
@@ -28,6 +29,8 @@ void read_ugv_sections(board::Reader& r, const YAML::Node& doc, UgvBoardConfig& 
     c.nav.start_guess = Pose2{Vec2(start[0], start[1]), start[2]};
   }
   r.get(robot, "robot", "radius_m", c.nav.body_radius_m, 0.05, 2.0);
+  r.get(robot, "robot", "state_file", c.state_file);
+  r.get(robot, "robot", "state_max_age_s", c.state_max_age_s, 1.0, 86400.0);
 
   const YAML::Node can = child(doc, "can");
   r.only(can, "can", {"interface", "counts_id", "speeds_id", "command_id", "extended_ids"});

@@ -40,6 +40,7 @@ class RealtimeExecutor {
   std::uint64_t run() { return run_until(TimePoint::max()); }
   // Async-signal-safe: may be called from a SIGINT/SIGTERM handler or another thread.
   void request_stop() { stop_.store(true, std::memory_order_relaxed); }
+  bool stop_requested() const { return stop_.load(std::memory_order_relaxed); }
 
   const Schedule& schedule() const { return schedule_; }
 

@@ -5,6 +5,7 @@
 // (UgvSchedule). ugv_fw's main runs it; tests build it the same way. It holds the task and its
 // maps (~6 MB): the program keeps it in static storage, so the footprint is fixed at link time
 // (`size ugv_fw` shows it in .bss) and cannot overflow a stack.
+#include <cstdint>
 #include <optional>
 #include <string>
 
@@ -41,6 +42,7 @@ class UgvBoard {
 
  private:
   bool open_can(std::string& error);
+  void keep_state();  // its pose to the state file, if one is configured
 
   UgvBoardConfig config_;
   platform::RealtimeExecutor executor_;
@@ -53,6 +55,7 @@ class UgvBoard {
   platform::dds::DdsTransport dds_;
   std::optional<platform::TransportPump> pump_;
   std::optional<UgvNavTask> task_;
+  std::uint64_t state_errors_ = 0;
 };
 
 }  // namespace colag::ugv

@@ -15,6 +15,9 @@ struct UgvBoardConfig {
   std::string can_interface = "can0";
   hal::can::WheelProtocolConfig protocol;
   hal::can::WheelGeometry wheels;
+  // Its last pose, kept across a restart of the program (resume_state.hpp); empty: not kept.
+  std::string state_file;
+  double state_max_age_s = 300.0;
 };
 
 // False with `error` = "FILE: key.path: problem".
