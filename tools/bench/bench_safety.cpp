@@ -62,14 +62,15 @@ int run_safety(const SafetyOptions& o) {
 
   std::ofstream csv(o.csv);
   csv << "faults,scenario,ugvs,seed,ok,all_reached,collisions,reached_ugvs,min_clearance_m,"
-         "reach_time_s,waiting_time_s,max_waiting_time_s\n";
+         "reach_time_s,waiting_time_s,max_waiting_time_s,nees_min_ugv,nees_max_ugv\n";
   std::printf(
       "\nSafety under faults (maps sparse+dense x 3/5/7 UGVs, pillars x 3/5/8, x seeds):\n");
-  std::printf("%-16s %8s %10s %12s %14s %9s %8s %8s\n", "faults", "missions", "collisions",
-              "UGVs reached", "min clear. m", "reach s", "wait s", "max wait");
+  std::printf("%-16s %8s %10s %12s %14s %9s %8s %8s %12s\n", "faults", "missions", "collisions",
+              "UGVs reached", "min clear. m", "reach s", "wait s", "max wait", "NEES in 1-6");
   int failed = 0, total_collisions = 0;
   for (const FaultSetting& f : settings()) {
     int missions = 0, collisions = 0, reached = 0, ugvs = 0;
+    int nees_ok = 0;  // UGVs whose mean NEES is within [1, 6] (3-dof: 3 is honest)
     double min_clearance = std::numeric_limits<double>::infinity(), max_wait = 0.0;
     Mean reach, wait;
     for (const MissionRun& r : runs) {
@@ -84,8 +85,13 @@ int run_safety(const SafetyOptions& o) {
       const auto& s = r.result["summary"];
       int mission_reached = 0;
       double mission_clearance = std::numeric_limits<double>::infinity();
+      double nees_min = std::numeric_limits<double>::infinity(), nees_max = 0.0;
       for (const auto& u : r.result["ugvs"]) {
         ++ugvs;
+        const double nees = u["nees_mean"].get<double>();
+        nees_ok += nees >= 1.0 && nees <= 6.0 ? 1 : 0;
+        nees_min = std::min(nees_min, nees);
+        nees_max = std::max(nees_max, nees);
         mission_reached += u["reached"].get<bool>() ? 1 : 0;
         mission_clearance = std::min(mission_clearance, u["min_clearance_m"].get<double>());
       }
@@ -100,12 +106,13 @@ int run_safety(const SafetyOptions& o) {
           << (s["reach_time_s"].is_null() ? std::string()
                                           : std::to_string(s["reach_time_s"].get<double>()))
           << ',' << s["waiting_time_s"].get<double>() << ','
-          << s["max_waiting_time_s"].get<double>() << '\n';
+          << s["max_waiting_time_s"].get<double>() << ',' << nees_min << ',' << nees_max << '\n';
     }
     if (missions == 0) continue;
     total_collisions += collisions;
-    std::printf("%-16s %8d %10d %7d/%-4d %14.3f %9.1f %8.1f %8.1f\n", f.name, missions, collisions,
-                reached, ugvs, min_clearance, reach.get(), wait.get(), max_wait);
+    std::printf("%-16s %8d %10d %7d/%-4d %14.3f %9.1f %8.1f %8.1f %7d/%-4d\n", f.name, missions,
+                collisions, reached, ugvs, min_clearance, reach.get(), wait.get(), max_wait,
+                nees_ok, ugvs);
   }
   std::printf("\ntotal collisions: %d;  per-mission CSV: %s\n", total_collisions, o.csv.c_str());
   if (failed > 0) std::printf("%d mission%s failed to run\n", failed, failed == 1 ? "" : "s");
