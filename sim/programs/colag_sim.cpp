@@ -135,6 +135,21 @@ int run(int argc, char** argv) {
       ->check(CLI::Range(0.0, 1000.0));
   clocks->add_option("--clock-step", clock_step,
                      "T:S: at mission time T s the UAV's clock jumps by S s (S may be negative)");
+  // The camera, over the world's (to reproduce a given robot's without writing a world file).
+  double fov_deg = 0.0, rpe_range = 0.0, rpe_sigma = 0.0, rpe_true_scale = 0.0;
+  auto* camera = app.add_option_group("camera", "the UAV's relative-pose camera (over --world's)");
+  auto* fov_opt = camera
+                      ->add_option("--camera-fov-deg", fov_deg,
+                                   "half-angle of its view cone from straight down, deg")
+                      ->check(CLI::Range(1.0, 180.0));
+  auto* range_opt = camera->add_option("--rpe-range-m", rpe_range, "how far it detects tags, m")
+                        ->check(sim::positive_up_to(100.0));
+  auto* sigma_opt = camera->add_option("--rpe-sigma-m", rpe_sigma, "position sigma it reports, m")
+                        ->check(sim::positive_up_to(10.0));
+  auto* true_opt = camera
+                       ->add_option("--rpe-true-scale", rpe_true_scale,
+                                    "its true error sigma is this x what it reports")
+                       ->check(sim::positive_up_to(100.0));
   app.add_option("--json", json_path, "write the metrics as JSON to this file");
   app.add_option("--png", png_path, "draw the mission into this PNG file");
   std::string save_map;
@@ -156,6 +171,12 @@ int run(int argc, char** argv) {
     std::fprintf(stderr, "colag_sim: --world: %s\n", error.c_str());
     return 2;
   }
+  if (fov_opt->count() + range_opt->count() + sigma_opt->count() + true_opt->count() > 0)
+    cfg.world.name += "+camera";  // the JSON and the table say the world is not the file's
+  if (fov_opt->count() > 0) cfg.world.camera.fov_half_angle_deg = fov_deg;
+  if (range_opt->count() > 0) cfg.world.camera.range_m = rpe_range;
+  if (sigma_opt->count() > 0) cfg.world.camera.sigma_position_m = rpe_sigma;
+  if (true_opt->count() > 0) cfg.world.camera.true_sigma_scale = rpe_true_scale;
   cfg.faults.loss = loss_pct / 100.0;
   cfg.faults.odom_bias = odom_bias_pct / 100.0;
   for (const auto& [text, window, name] :
