@@ -17,6 +17,7 @@
 // restart the filter from them. Pure, allocation-free; the caller does the messaging.
 #include <cstdint>
 
+#include "colag/common/limits.hpp"
 #include "colag/common/ring_buffer.hpp"
 #include "colag/common/time.hpp"
 
@@ -53,7 +54,7 @@ struct ClockFilterCounters {
 
 class ClockOffsetFilter {
  public:
-  static constexpr std::size_t kWindow = 32;
+  static constexpr std::size_t kWindow = limits::kClockFilterBins;
   enum class Verdict : std::uint8_t { kAccepted, kUnexplained, kStepped, kInvalid };
 
   explicit ClockOffsetFilter(const ClockFilterConfig& config = {}) : config_(config) {}
@@ -86,7 +87,8 @@ class ClockOffsetFilter {
   ClockFilterConfig config_;
   RingBuffer<Sample, kWindow> window_;
   void keep(const Sample& s);
-  RingBuffer<Sample, 4> unexplained_;  // the current run of exchanges the fit does not explain
+  RingBuffer<Sample, limits::kClockStepRun>
+      unexplained_;  // the current run of exchanges the fit does not explain
   // The fit: offset(t) = base_ + fitted_ + drift_ * (t - t0_) (base_ keeps the doubles small).
   TimePoint t0_{};
   Duration base_{};

@@ -46,6 +46,11 @@ inline constexpr std::size_t kCanRxQueue = 64;       // frames queued per simula
 inline constexpr std::size_t kCanFilters = 8;        // kernel receive filters per SocketCAN bus
 inline constexpr std::size_t kOdometryBacklog = 32;  // wheel samples awaiting the task's poll
 
+// --- Estimation --------------------------------------------------------------------------------
+inline constexpr std::size_t kEkfHistory = 64;       // UGV EKF odometry steps kept (1.28 s)
+inline constexpr std::size_t kClockFilterBins = 32;  // clock-offset bins (8 s each: ~4 min)
+inline constexpr std::size_t kClockStepRun = 4;      // unexplained exchanges held (step: 3)
+
 // --- Runtime -----------------------------------------------------------------------------------
 // A board runs a handful of tasks; the host simulator puts a whole fleet in one table
 // (16 UGVs x 2 loops + the UAV's 4 + world, transport, monitor).

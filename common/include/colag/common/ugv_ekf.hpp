@@ -17,6 +17,7 @@
 #include <cstdint>
 
 #include "colag/common/geometry.hpp"
+#include "colag/common/limits.hpp"
 #include "colag/common/ring_buffer.hpp"
 #include "colag/common/status.hpp"
 #include "colag/common/time.hpp"
@@ -53,7 +54,7 @@ struct UgvEkfCounters {
 
 class UgvEkf {
  public:
-  static constexpr std::size_t kHistory = 64;  // odometry steps kept (1.28 s at 50 Hz)
+  static constexpr std::size_t kHistory = limits::kEkfHistory;  // 1.28 s at 50 Hz
 
   enum class Update : std::uint8_t {
     kInitialized,
