@@ -171,17 +171,21 @@ int run_tables(const TablesOptions& o) {
     }
   }
   if (t2 && !o.quick) {
-    std::printf("\nTable II: dense map, 5 UGVs, each ablation (averages over the seeds)\n");
-    std::printf("%-16s %8s %7s %7s %7s %8s %5s %8s   %s\n", "method", "reach", "wait", "max",
+    std::printf(
+        "\nTable II: dense map, 5 UGVs, each ablation (averages over the seeds, +- the 95 %% "
+        "interval of the mean)\n");
+    std::printf("%-16s %15s %13s %7s %7s %8s %5s %8s   %s\n", "method", "reach", "wait", "max",
                 "UGV m", "UAV m", "coll", "reached", "paper");
     for (const char* ab :
          {"none", "no-rpe", "no-uncertainty", "no-scheduling", "no-time-windows"}) {
       const Aggregate a = aggregate(runs, spec("dense", 5, ab, false).key());
       if (a.runs == 0) continue;
-      std::printf("%-16s %8s %7s %7s %7s %8s %5d %4d/%-3d   %s\n", ab, num(a.reach.get()).c_str(),
-                  num(a.waiting.get()).c_str(), num(a.max_waiting.get()).c_str(),
-                  num(a.ugv_len.get()).c_str(), num(a.uav_len.get()).c_str(), a.collisions,
-                  a.all_reached, a.runs, kTable2.at(ab).c_str());
+      std::printf("%-16s %7s +-%5s %6s +-%4s %7s %7s %8s %5d %4d/%-3d   %s\n", ab,
+                  num(a.reach.get()).c_str(), num(a.reach.half95()).c_str(),
+                  num(a.waiting.get()).c_str(), num(a.waiting.half95()).c_str(),
+                  num(a.max_waiting.get()).c_str(), num(a.ugv_len.get()).c_str(),
+                  num(a.uav_len.get()).c_str(), a.collisions, a.all_reached, a.runs,
+                  kTable2.at(ab).c_str());
     }
   }
   Mean rt;

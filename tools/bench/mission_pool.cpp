@@ -21,11 +21,22 @@ std::string MissionSpec::key() const {
 void Mean::add(double v) {
   if (std::isfinite(v)) {
     sum += v;
+    sum_sq += v * v;
     ++n;
   }
 }
 double Mean::get() const {
   return n > 0 ? sum / n : NAN;
+}
+double Mean::half95() const {
+  if (n < 2) return NAN;
+  // t(0.975, dof) for dof 1..10, then towards the normal's 1.96.
+  static constexpr double kT[] = {12.71, 4.30, 3.18, 2.78, 2.57, 2.45, 2.36, 2.31, 2.26, 2.23};
+  const int dof = n - 1;
+  const double t = dof <= 10 ? kT[dof - 1] : (dof <= 30 ? 2.09 : 1.96);
+  const double mean = sum / n;
+  const double var = std::max(0.0, (sum_sq - n * mean * mean) / (n - 1));
+  return t * std::sqrt(var / n);
 }
 
 std::string sim_path(const std::string& explicit_path) {

@@ -38,9 +38,12 @@ bool run_missions(std::vector<MissionRun>& runs, const std::string& sim, int job
 
 struct Mean {
   double sum = 0;
+  double sum_sq = 0;
   int n = 0;
   void add(double v);
   double get() const;
+  // Half-width of the 95 % confidence interval of the mean (Student's t; NaN below 2 samples).
+  double half95() const;
 };
 
 }  // namespace colag::programs
