@@ -41,13 +41,16 @@ TEST_F(BoardConfig, ReadsEveryUgvKey) {
   UgvBoardConfig c;
   std::string error;
   ASSERT_TRUE(load_ugv_config(write("ugv.yaml", R"(
-robot: {id: 3, goal: [2.0, -16.0], start_guess: [2.0, 16.0, -1.57], radius_m: 0.3}
+robot: {id: 3, goal: [2.0, -16.0], start_guess: [2.0, 16.0, -1.57], radius_m: 0.3,
+        state_file: /var/lib/colag/ugv3.state, state_max_age_s: 60}
 dds: {domain: 7, partition: lab}
 realtime: {fifo_priority: 60, lock_memory: false}
 can: {interface: vcan1, counts_id: 0x301, speeds_id: 0x302, command_id: 0x401}
 wheels: {radius_m: 0.08, track_m: 0.5, ticks_per_rev: 2048, max_speed_mps: 1.2}
 rates: {control_hz: 100, planning_hz: 5}
-odometry: {timeout_ms: 80, sigma_v: 0.05, sigma_omega: 0.04}
+odometry: {timeout_ms: 80, sigma_v: 0.05, sigma_omega: 0.04,
+           calibration: {estimate: true, scale: 0.01, turn_scale: 0.05, drift_per_m: 0.02,
+                         drift_per_s: 0.002}}
 )"),
                               c, error))
       << error;
@@ -73,6 +76,13 @@ odometry: {timeout_ms: 80, sigma_v: 0.05, sigma_omega: 0.04}
   EXPECT_EQ(c.nav.schedule.transport.period, std::chrono::milliseconds(10));
   EXPECT_EQ(c.nav.odometry_timeout, std::chrono::milliseconds(80));
   EXPECT_DOUBLE_EQ(c.nav.ekf.noise.sigma_v_mps, 0.05);
+  EXPECT_TRUE(c.nav.ekf.calibration.estimate);
+  EXPECT_DOUBLE_EQ(c.nav.ekf.calibration.sigma_scale_v, 0.01);
+  EXPECT_DOUBLE_EQ(c.nav.ekf.calibration.sigma_scale_omega, 0.05);
+  EXPECT_DOUBLE_EQ(c.nav.ekf.calibration.sigma_omega_per_m_radpm, 0.02);
+  EXPECT_DOUBLE_EQ(c.nav.ekf.calibration.sigma_omega_bias_radps, 0.002);
+  EXPECT_EQ(c.state_file, "/var/lib/colag/ugv3.state");
+  EXPECT_DOUBLE_EQ(c.state_max_age_s, 60.0);
 }
 
 TEST_F(BoardConfig, DdsSecurityFilesAreRelativeToTheConfigAndAllRequired) {
