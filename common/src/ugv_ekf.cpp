@@ -30,7 +30,6 @@ void UgvEkf::clamp_calibration(UgvStateVec& x) const {
 void UgvEkf::reset() {
   initialized_ = false;
   consecutive_rejections_ = 0;
-  noise_scale_ = 1.0;
   noise_mean_ = 1.0;
   noise_samples_ = 0.0;
   history_.clear();
@@ -73,7 +72,7 @@ UgvEkf::Update UgvEkf::update(const PoseMeasurement& z) {
     ++counters_.rejected_invalid;
     return Update::kRejectedInvalid;
   }
-  const Mat3 R = noise_scale_ * reported;
+  const Mat3 R = measurement_noise_scale() * reported;
   // The newest step at or before the measurement; a measurement newer than every odometry
   // sample applies to the newest state.
   std::size_t k = history_.size();
@@ -129,7 +128,6 @@ UgvEkf::Update UgvEkf::update(const PoseMeasurement& z) {
         (innovation.dot(R0inv * innovation) - (R0inv * at.P.topLeftCorner<3, 3>()).trace()) / 3.0;
     noise_samples_ = std::min(noise_samples_ + 1.0, config_.measurement_noise_window);
     noise_mean_ += (sample - noise_mean_) / noise_samples_;
-    noise_scale_ = std::clamp(noise_mean_, 1.0, config_.max_measurement_noise_scale);
   }
   // Huber: a measurement further out than the robust bound (inside the gate) counts less, as if
   // its covariance were larger by sqrt(d2 / bound): a moderate outlier (a tag half a metre off,

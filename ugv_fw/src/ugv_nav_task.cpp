@@ -195,8 +195,7 @@ void UgvNavTask::command(TimePoint now, double v, double omega) {
 
 void UgvNavTask::drive(TimePoint now, double dt) {
   // A relative pose came: it is sure enough now, or it learnt that it is not there yet.
-  if (awaiting_fix_ && position_uncertainty_m() <= config_.arrival_max_uncertainty_m)
-    awaiting_fix_ = false;
+  if (awaiting_fix_ && sure_of_position()) awaiting_fix_ = false;
   if (fault_) {
     mode_ = msg::UgvMode::kFault;
   } else if (blocked_.blocked()) {
@@ -223,7 +222,7 @@ void UgvNavTask::drive(TimePoint now, double dt) {
   const ControlOutput out = controller_.step(ekf_.pose(), trajectory_, dt);
   cross_track_m_ = out.cross_track_m;
   if (out.at_goal && (ekf_.pose().p - config_.goal).norm() <= config_.controller.goal_tolerance_m) {
-    if (position_uncertainty_m() <= config_.arrival_max_uncertainty_m) {
+    if (sure_of_position()) {
       arrived_ = true;
       mode_ = msg::UgvMode::kArrived;
     } else {
@@ -432,8 +431,10 @@ void UgvNavTask::predict_and_request(TimePoint now) {
   if (support_.update(now, config_.id, need, ci)) publish_request(ci);
 }
 
-double UgvNavTask::position_uncertainty_m() const {
-  return sigma_ellipse(ekf_.pose().p, ekf_.covariance().topLeftCorner<2, 2>(), 3.0).axes().a_m;
+bool UgvNavTask::sure_of_position() const {
+  const double three_sigma_m =
+      sigma_ellipse(ekf_.pose().p, ekf_.covariance().topLeftCorner<2, 2>(), 3.0).axes().a_m;
+  return three_sigma_m <= config_.arrival_max_uncertainty_m;
 }
 
 msg::BlockedReason UgvNavTask::standing_reason() const {

@@ -14,6 +14,7 @@
 //   (innovation-based covariance matching, Mehra 1972): an AprilTag pose's covariance is a
 //   constant while its true error grows with distance and obliquity. Only up, never below the
 //   reported one, and slowly (over ~50 updates) so that outliers cannot drive it.
+#include <algorithm>
 #include <cstdint>
 
 #include "colag/common/geometry.hpp"
@@ -82,7 +83,9 @@ class UgvEkf {
   TimePoint stamp() const { return state_.t; }
   const UgvEkfCounters& counters() const { return counters_; }
   // The factor the relative poses' covariance is multiplied by (1: as reported).
-  double measurement_noise_scale() const { return noise_scale_; }
+  double measurement_noise_scale() const {
+    return std::clamp(noise_mean_, 1.0, config_.max_measurement_noise_scale);
+  }
   const UgvEkfConfig& config() const { return config_; }
 
  private:
@@ -101,8 +104,7 @@ class UgvEkf {
   UgvEkfConfig config_;
   bool initialized_ = false;
   int consecutive_rejections_ = 0;
-  double noise_scale_ = 1.0;  // what is used: noise_mean_ within [1, max]
-  double noise_mean_ = 1.0;
+  double noise_mean_ = 1.0;  // used within [1, max]: measurement_noise_scale()
   double noise_samples_ = 0.0;
   Step state_;                          // the newest state
   RingBuffer<Step, kHistory> history_;  // past states, oldest first; back() == state_

@@ -80,10 +80,13 @@ struct OdometryCalibrationModel {
 
 // Below this measured twist the wheels stand still: nothing moves, not even by the bias.
 inline constexpr double kWheelsStill = 1e-4;
+inline bool wheels_moving(double v_m, double w_m) {
+  return std::abs(v_m) + std::abs(w_m) > kWheelsStill;
+}
 
 // The robot's twist from the measured one and the calibration in `x`.
 inline Eigen::Vector2d calibrated_twist(const UgvStateVec& x, double v_m, double w_m) {
-  const bool moving = std::abs(v_m) + std::abs(w_m) > kWheelsStill;
+  const bool moving = wheels_moving(v_m, w_m);
   return {(1.0 + x(kScaleV)) * v_m,
           (1.0 + x(kScaleW)) * w_m + x(kWPerMetre) * v_m + (moving ? x(kWBias) : 0.0)};
 }
@@ -94,7 +97,7 @@ inline void propagate(UgvStateVec& x, UgvStateCov& P, double v_m, double w_m, do
                       const OdometryNoise& n,
                       const Eigen::Matrix<double, kCalibrationDim, 1>& walk) {
   const double c = std::cos(x(2)), s = std::sin(x(2));
-  const bool moving = std::abs(v_m) + std::abs(w_m) > kWheelsStill;
+  const bool moving = wheels_moving(v_m, w_m);
   const Eigen::Vector2d tw = calibrated_twist(x, v_m, w_m);
   const double v = tw(0), w = tw(1);
   UgvStateCov F = UgvStateCov::Identity();

@@ -113,7 +113,7 @@ class UgvNavTask {
   }
   void sum_stamp_counters();
   msg::BlockedReason standing_reason() const;
-  double position_uncertainty_m() const;  // 3-sigma semi-major axis of its position estimate
+  bool sure_of_position() const;  // 3 sigma within arrival_max_uncertainty_m: may arrive
   void command(TimePoint now, double v, double omega);
 
   UgvNavConfig config_;
