@@ -25,6 +25,7 @@ void UgvEkf::clamp_calibration(UgvStateVec& x) const {
   x(kScaleW) = std::clamp(x(kScaleW), -m.max_scale, m.max_scale);
   x(kWPerMetre) = std::clamp(x(kWPerMetre), -m.max_omega_per_m_radpm, m.max_omega_per_m_radpm);
   x(kWBias) = std::clamp(x(kWBias), -m.max_omega_bias_radps, m.max_omega_bias_radps);
+  x(kSlip) = std::clamp(x(kSlip), -m.max_slip_per_radps, m.max_slip_per_radps);
 }
 
 void UgvEkf::reset() {

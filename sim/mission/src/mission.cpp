@@ -456,13 +456,15 @@ void Mission::fly(MissionTrace* trace) {
   for (std::size_t i = 0; i < ugvs.size(); ++i) {
     // What the wheels' errors make of the estimator's calibration: with each encoder reporting
     // (1 + s) x its wheel, the body's v = (u_l m_l + u_r m_r) / 2 and w = (u_r m_r - u_l m_l) / L
-    // with u = 1 / (1 + s): scale (u_l + u_r) / 2 - 1, drift per metre (u_r - u_l) / L.
+    // with u = 1 / (1 + s): scale and turn scale (u_l + u_r) / 2 - 1, drift per metre
+    // (u_r - u_l) / L; the slip is the world's (it acts on the true turn rate, near enough).
     const sim::UgvBodyConfig& bc = p.world->ugv(static_cast<int>(i)).config();
     const sim::WheelErrors& e = bc.wheel_errors;
     const double ul = 1.0 / ((1.0 + e.left_scale) * (1.0 + bc.encoder_bias));
     const double ur = 1.0 / ((1.0 + e.right_scale) * (1.0 + bc.encoder_bias));
-    p.outcomes[i].calibration_true = {0.5 * (ul + ur) - 1.0, std::nan(""),
-                                      (ur - ul) / bc.geometry.track_width_m, e.yaw_rate_bias_radps};
+    p.outcomes[i].calibration_true = {0.5 * (ul + ur) - 1.0, 0.5 * (ul + ur) - 1.0,
+                                      (ur - ul) / bc.geometry.track_width_m, e.yaw_rate_bias_radps,
+                                      e.slip_per_radps};
   }
   const TimePoint end = time_at_seconds(cfg.max_time_s);
   int tick = 0;

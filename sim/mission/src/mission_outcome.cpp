@@ -132,7 +132,8 @@ std::string to_json(const MissionOutcome& o, bool include_wall_time) {
     ju["waiting_parts"] = parts;
     ju["nees_mean"] = u.nees_mean;
     nlohmann::ordered_json cal;
-    const char* const cal_names[] = {"scale", "turn_scale", "drift_per_m", "drift_per_s"};
+    const char* const cal_names[kCalibrationDim] = {"scale", "turn_scale", "drift_per_m",
+                                                    "drift_per_s", "slip_per_radps"};
     for (std::size_t k = 0; k < u.calibration.size(); ++k) {
       const double truth = u.calibration_true[k];
       cal[cal_names[k]] = {{"learnt", u.calibration[k]},

@@ -1,14 +1,18 @@
 #pragma once
 // The differential-drive motion model of the paper's Eq. (3)-(4), extended with the wheel
-// odometry's calibration. State (x, y, yaw, a_v, a_w, c, b), input the wheel-odometry twist
+// odometry's calibration. State (x, y, yaw, a_v, a_w, c, b, k), input the wheel-odometry twist
 // (v_m, w_m) over dt. The robot's true twist is
 //   v = (1 + a_v) v_m                    a_v: the wheels' scale error (radius off)
-//   w = (1 + a_w) w_m + c v_m + b        a_w: turn-rate scale (track off, skid-steer slip)
-//                                        c:   heading drift per metre (left and right wheels
+//   w = (1 + a_w) w_m + c v_m + b        a_w: turn-rate scale (track off)
+//       - k w_m |w_m|                    c:   heading drift per metre (left and right wheels
 //                                             of different size: turns while driving straight)
 //                                        b:   heading drift per second while moving (camber)
+//                                        k:   skid-steer slip: the faster it turns, the larger
+//                                             the share of the turn its wheels skid away
 // which is what two wheels with their own scale error and a track error give exactly (up to a
-// v term in w_m small enough to ignore: c L^2 / 4). Then
+// v term in w_m small enough to ignore: c L^2 / 4), plus the first term of skid steering's slip
+// (a constant share of the turn is a_w's; a share growing with the turn rate is k's: without it
+// a robot that turns both slowly and on the spot learns neither right). Then
 //   x' = x + cos(yaw) v dt,  y' = y + sin(yaw) v dt,  yaw' = yaw + w dt,  calibration kept
 //   P' = F P F^T + B Q B^T + W dt,  F = df/dstate, B = df/d(v_m, w_m), Q = the twist's noise,
 //   W = the calibration's random walk (tyres wear, the ground changes).
@@ -25,13 +29,13 @@ namespace colag {
 using Vec3 = Eigen::Vector3d;
 
 inline constexpr int kPoseDim = 3;
-inline constexpr int kCalibrationDim = 4;
+inline constexpr int kCalibrationDim = 5;
 inline constexpr int kUgvStateDim = kPoseDim + kCalibrationDim;
 using UgvStateVec = Eigen::Matrix<double, kUgvStateDim, 1>;
 using UgvStateCov = Eigen::Matrix<double, kUgvStateDim, kUgvStateDim>;
 
 // Indices of the calibration in the state.
-enum UgvStateIndex : int { kScaleV = 3, kScaleW = 4, kWPerMetre = 5, kWBias = 6 };
+enum UgvStateIndex : int { kScaleV = 3, kScaleW = 4, kWPerMetre = 5, kWBias = 6, kSlip = 7 };
 
 // Odometry noise, per sample: white noise on the measured twist. The proportional terms model
 // wheel slip (the paper's 1 % multiplicative noise on the true motion).
@@ -46,7 +50,8 @@ struct OdometryNoise {
 // calibration state and how fast each may change. Defaults are what an uncalibrated wheeled
 // robot shows: wheel radii within a few percent (tyre wear, pressure, load), left and right
 // differing by as much (0.03 x sqrt(2) / 0.4 m track = 0.1 rad per metre), skid-steer turn
-// rates 5-20 % short of the wheels' on loose ground. A robot calibrated with UMBmark can set
+// rates 5-20 % short of the wheels' on loose ground, more so the faster they turn (0.1 per rad/s:
+// 10 % of a 1 rad/s turn lost beyond the constant share). A robot calibrated with UMBmark can set
 // smaller priors; `estimate = false` gives the paper's 3-state filter.
 struct OdometryCalibrationModel {
   bool estimate = true;
@@ -54,27 +59,32 @@ struct OdometryCalibrationModel {
   double sigma_scale_omega = 0.08;
   double sigma_omega_per_m_radpm = 0.10;
   double sigma_omega_bias_radps = 0.01;
+  double sigma_slip_per_radps = 0.10;
   // Random walk, per sqrt(second): the calibration may change over minutes, not seconds.
   double walk_scale_per_sqrt_s = 0.001;
   double walk_omega_per_m_per_sqrt_s = 0.002;
   double walk_omega_bias_per_sqrt_s = 0.0002;
+  double walk_slip_per_sqrt_s = 0.001;
   // Never believed beyond these (an outlier must not make the robot think it drives in circles).
   double max_scale = 0.3;
   double max_omega_per_m_radpm = 0.5;
   double max_omega_bias_radps = 0.1;
+  double max_slip_per_radps = 0.5;
 
   Eigen::Matrix<double, kCalibrationDim, 1> prior_variance() const {
     if (!estimate) return Eigen::Matrix<double, kCalibrationDim, 1>::Zero();
     return {sigma_scale_v * sigma_scale_v, sigma_scale_omega * sigma_scale_omega,
             sigma_omega_per_m_radpm * sigma_omega_per_m_radpm,
-            sigma_omega_bias_radps * sigma_omega_bias_radps};
+            sigma_omega_bias_radps * sigma_omega_bias_radps,
+            sigma_slip_per_radps * sigma_slip_per_radps};
   }
   Eigen::Matrix<double, kCalibrationDim, 1> walk_variance_per_s() const {
     if (!estimate) return Eigen::Matrix<double, kCalibrationDim, 1>::Zero();
     return {walk_scale_per_sqrt_s * walk_scale_per_sqrt_s,
             walk_scale_per_sqrt_s * walk_scale_per_sqrt_s,
             walk_omega_per_m_per_sqrt_s * walk_omega_per_m_per_sqrt_s,
-            walk_omega_bias_per_sqrt_s * walk_omega_bias_per_sqrt_s};
+            walk_omega_bias_per_sqrt_s * walk_omega_bias_per_sqrt_s,
+            walk_slip_per_sqrt_s * walk_slip_per_sqrt_s};
   }
 };
 
@@ -87,8 +97,8 @@ inline bool wheels_moving(double v_m, double w_m) {
 // The robot's twist from the measured one and the calibration in `x`.
 inline Eigen::Vector2d calibrated_twist(const UgvStateVec& x, double v_m, double w_m) {
   const bool moving = wheels_moving(v_m, w_m);
-  return {(1.0 + x(kScaleV)) * v_m,
-          (1.0 + x(kScaleW)) * w_m + x(kWPerMetre) * v_m + (moving ? x(kWBias) : 0.0)};
+  return {(1.0 + x(kScaleV)) * v_m, (1.0 + x(kScaleW)) * w_m - x(kSlip) * w_m * std::abs(w_m) +
+                                        x(kWPerMetre) * v_m + (moving ? x(kWBias) : 0.0)};
 }
 
 // One step of the model. `walk` is the calibration's random walk per second (zero: calibration
@@ -108,11 +118,12 @@ inline void propagate(UgvStateVec& x, UgvStateCov& P, double v_m, double w_m, do
   F(2, kScaleW) = w_m * dt;
   F(2, kWPerMetre) = v_m * dt;
   F(2, kWBias) = moving ? dt : 0.0;
+  F(2, kSlip) = -w_m * std::abs(w_m) * dt;
   Eigen::Matrix<double, kUgvStateDim, 2> B = Eigen::Matrix<double, kUgvStateDim, 2>::Zero();
   B(0, 0) = c * (1.0 + x(kScaleV)) * dt;
   B(1, 0) = s * (1.0 + x(kScaleV)) * dt;
   B(2, 0) = x(kWPerMetre) * dt;
-  B(2, 1) = (1.0 + x(kScaleW)) * dt;
+  B(2, 1) = (1.0 + x(kScaleW) - 2.0 * x(kSlip) * std::abs(w_m)) * dt;
   const double fv = n.sigma_v_fraction * v_m, fw = n.sigma_omega_fraction * w_m;
   const Eigen::Vector2d q(n.sigma_v_mps * n.sigma_v_mps + fv * fv,
                           n.sigma_omega_radps * n.sigma_omega_radps + fw * fw);

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "colag/common/ugv_motion_model.hpp"
 #include "colag/msg/ugv_status.hpp"
 #include "colag/sim/mission/mission_config.hpp"
 #include "colag/ugv/waiting.hpp"
@@ -36,11 +37,11 @@ struct UgvOutcome {
   double nees_mean = 0.0;
   std::uint64_t nees_samples = 0;
   // The wheel-odometry calibration its estimator learnt (scale, turn_scale, drift_per_m,
-  // drift_per_s; see ugv_motion_model.hpp), its 1-sigma, and what the simulated wheels have
-  // (NaN for the turn scale: the skid's share depends on how hard it turns).
-  std::array<double, 4> calibration{};
-  std::array<double, 4> calibration_sigma{};
-  std::array<double, 4> calibration_true{};
+  // drift_per_s, slip; see ugv_motion_model.hpp), its 1-sigma, and what the simulated wheels
+  // have.
+  std::array<double, kCalibrationDim> calibration{};
+  std::array<double, kCalibrationDim> calibration_sigma{};
+  std::array<double, kCalibrationDim> calibration_true{};
   // Fleet time (see ugv/fleet_clock.hpp): the UAV clock's steps it followed, and the error bound
   // it reported at the end (< 0: not synchronised).
   std::uint64_t clock_steps = 0;
