@@ -60,11 +60,14 @@ hal::FlightSetpoint FlightPlanner::step(const hal::UavState& s, TimePoint now, d
     const Vec2 to_aim = aim - p;
     if (to_aim.norm() > 1e-3) v_des = speed * to_aim.normalized();
   }
-  // Acceleration limit: change the measured velocity by at most a_max * dt.
-  Vec2 dv = v_des - v;
+  // Acceleration limit: change the last setpoint by at most a_max * dt.
+  const Vec2 from = have_cmd_ && (last_cmd_ - v).norm() <= config_.resync_mps ? last_cmd_ : v;
+  Vec2 dv = v_des - from;
   const double max_dv = config_.limits.a_max_mps2 * dt;
   if (dv.norm() > max_dv) dv *= max_dv / dv.norm();
-  const Vec2 v_cmd = v + dv;
+  const Vec2 v_cmd = from + dv;
+  last_cmd_ = v_cmd;
+  have_cmd_ = true;
   const double vz = std::clamp(config_.altitude_gain * (config_.altitude_m - s.pose.p.z()),
                                -config_.max_climb_mps, config_.max_climb_mps);
   hal::FlightSetpoint sp;

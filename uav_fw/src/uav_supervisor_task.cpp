@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "colag/uav/rpe_relay.hpp"
+#include "colag/uav/state_prediction.hpp"
 #include "colag/uav/time_cost.hpp"
 
 namespace colag::uav {
@@ -122,7 +123,8 @@ void UavSupervisorTask::control_step(TimePoint now) {
     ugvs_[detections[i].ugv_id].last_seen = detections[i].stamp;
   }
   if (!have_state_) return;
-  if (!flight_out_.send_setpoint(flight_.step(state_, now, dt, flight_layer_)))
+  const hal::UavState here = predict_state(state_, now, config_.max_odometry_prediction);
+  if (!flight_out_.send_setpoint(flight_.step(here, now, dt, flight_layer_)))
     ++health_.setpoint_errors;
 }
 
@@ -132,7 +134,8 @@ void UavSupervisorTask::control_step(TimePoint now) {
 void UavSupervisorTask::mapping_step(TimePoint now) {
   hal::LidarScanView scan;
   if (lidar_.poll(scan) && have_state_) {
-    const Pose3 sensor = state_.pose.compose(config_.lidar_mount);
+    const Pose3 sensor = predict_state(state_, scan.stamp, config_.max_odometry_prediction)
+                             .pose.compose(config_.lidar_mount);
     filter_team(now);
     mapper_.insert_scan(sensor, team_filter_.apply(scan, sensor, mapper_));
   }

@@ -196,6 +196,12 @@ sim::CameraConfig camera_of(const sim::CameraProfile& c) {
   return out;
 }
 
+sim::UavOdometryErrors uav_odometry_of(const sim::UavOdometryProfile& o) {
+  constexpr double kDeg = M_PI / 180.0;
+  return {o.scale_error,   o.yaw_error_deg * kDeg, o.walk_m_per_sqrt_min / std::sqrt(60.0),
+          o.jumps_per_min, o.jump_max_m,           seconds(o.latency_ms / 1e3)};
+}
+
 // After the UGV lanes ran: their samples go onto the bus in lane order, as if the UGVs' tasks
 // had run one after the other.
 class FlushOutboxes final : public platform::LaneBarrier {
@@ -342,6 +348,8 @@ std::unique_ptr<Mission> Mission::compose(const MissionConfig& cfg, std::string&
   wc.ugv.encoder_bias = cfg.faults.odom_bias;
   wc.camera = camera_of(cfg.world.camera);
   wc.lidar_errors = {cfg.world.lidar.range_sigma_m, cfg.world.lidar.dropout};
+  wc.uav.odometry = uav_odometry_of(cfg.world.uav_odometry);
+  wc.uav.seed = cfg.seed * 104729ULL + 3;
   const std::vector<sim::WheelErrors> wheels = draw_wheels(cfg);
   p->pool = std::make_unique<platform::WorkerPool>(cfg.threads - 1);
   p->world = std::make_unique<sim::SimWorld>(wc, boxes, p->ex->clock(), p->pool.get());
@@ -374,14 +382,18 @@ std::unique_ptr<Mission> Mission::compose(const MissionConfig& cfg, std::string&
                       &wheels[static_cast<std::size_t>(i)]);
   }
   if (cfg.self_perception) p->world->enable_ugv_lidars();
+  // Goals and start guesses are given where the UAV's map has them: in its odometry's frame
+  // (the world's own in the ideal world and without a UAV).
+  const sim::OdometryFrame& map_frame = p->world->odometry_frame();
   for (int i = 0; i < cfg.ugvs; ++i) {
     UgvStack& s = p->ugvs[static_cast<std::size_t>(i)];
     s.goal = ugv_goal(i);
     ugv::UgvNavConfig nc;
     nc.id = static_cast<RobotId>(i);
-    nc.goal = s.goal;
+    nc.goal = map_frame.to_odometry(s.goal);
     nc.has_start_guess = true;
-    nc.start_guess = ugv_start(i);
+    const Pose2 start = ugv_start(i);
+    nc.start_guess = {map_frame.to_odometry(start.p), start.yaw_rad + map_frame.yaw_error_rad()};
     nc.use_rpe_updates = cfg.ablation != Ablation::kNoRpe;
     nc.predictor.use_uncertainty = cfg.ablation != Ablation::kNoUncertainty;
     nc.predictor.horizon_m = cfg.predict_horizon_m;
@@ -485,10 +497,12 @@ void Mission::fly(MissionTrace* trace) {
       o.stops = p.still->stops[i];
       // How honest its covariance is: NEES of (x, y, yaw) against the truth.
       const UgvEkf& ekf = task.estimator();
+      // Its estimate is in the UAV odometry's frame: so is the truth it is held against.
       if (ekf.initialized() && task.mode() != msg::UgvMode::kArrived && !body.frozen()) {
+        const sim::OdometryFrame& frame = p.world->odometry_frame();
         Vec3 e;
-        e.head<2>() = ekf.pose().p - now_pose.p;
-        e.z() = wrap_angle(ekf.pose().yaw_rad - now_pose.yaw_rad);
+        e.head<2>() = ekf.pose().p - frame.to_odometry(now_pose.p);
+        e.z() = wrap_angle(ekf.pose().yaw_rad - now_pose.yaw_rad - frame.yaw_error_rad());
         const double nees = e.dot(ekf.covariance().ldlt().solve(e));
         if (std::isfinite(nees)) {
           ++o.nees_samples;

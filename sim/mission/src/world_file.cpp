@@ -17,7 +17,7 @@ bool load_world_file(const std::string& file, sim::WorldProfile& out, std::strin
     return false;
   }
   board::Reader r(file, error);
-  r.only(root, "", {"base", "wheels", "lidar", "camera", "clocks"});
+  r.only(root, "", {"base", "wheels", "lidar", "camera", "uav_odometry", "clocks"});
   std::string base = "field";
   r.get(root, "", "base", base);
   if (!r.ok()) return false;
@@ -59,6 +59,19 @@ bool load_world_file(const std::string& file, sim::WorldProfile& out, std::strin
   r.get(cam, "camera", "outlier_max_deg", c.outlier_max_deg, 0.0, 180.0);
   r.get(cam, "camera", "latency_ms", c.latency_ms, 0.0, 1000.0);
   r.get(cam, "camera", "jitter_ms", c.jitter_ms, 0.0, 1000.0);
+  const YAML::Node odo = board::child(root, "uav_odometry");
+  const std::string op = "uav_odometry";
+  r.only(odo, op,
+         {"scale_error", "yaw_error_deg", "walk_m_per_sqrt_min", "jumps_per_min", "jump_max_m",
+          "latency_ms"});
+  sim::UavOdometryProfile& o = w.uav_odometry;
+  r.get(odo, op, "scale_error", o.scale_error, 0.0, 0.2);
+  r.get(odo, op, "yaw_error_deg", o.yaw_error_deg, 0.0, 30.0);
+  r.get(odo, op, "walk_m_per_sqrt_min", o.walk_m_per_sqrt_min, 0.0, 10.0);
+  r.get(odo, op, "jumps_per_min", o.jumps_per_min, 0.0, 60.0);
+  r.get(odo, op, "jump_max_m", o.jump_max_m, 0.0, 5.0);
+  // Up to what the simulated odometry can hold in flight (64 world steps of 20 ms).
+  r.get(odo, op, "latency_ms", o.latency_ms, 0.0, 500.0);
   const YAML::Node clocks = board::child(root, "clocks");
   r.only(clocks, "clocks", {"offset_s", "drift_ppm"});
   r.get(clocks, "clocks", "offset_s", w.clocks.offset_s, 0.0, 1e6);

@@ -157,6 +157,10 @@ hal::RelativePoseSensor& SimWorld::uav_camera() {
 const UgvBody& SimWorld::ugv(int i) const {
   return ugvs_.at(static_cast<std::size_t>(i))->body;
 }
+const OdometryFrame& SimWorld::odometry_frame() const {
+  static const OdometryFrame kWorld;
+  return uav_ ? uav_->odometry_frame() : kWorld;
+}
 double SimWorld::min_clearance_m(int i) const {
   return ugvs_.at(static_cast<std::size_t>(i))->min_clearance;
 }

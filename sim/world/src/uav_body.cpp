@@ -4,6 +4,11 @@
 
 namespace colag::sim {
 
+UavBody::UavBody(const UavBodyConfig& config, const Vec3& start)
+    : config_(config), frame_(config.odometry, start, config.seed) {
+  state_.pose.p = start;
+}
+
 Status UavBody::send_setpoint(const hal::FlightSetpoint& sp) {
   if (!all_finite(sp.position_m) || !all_finite(sp.velocity_mps)) {
     return {Errc::kInvalidArgument, "flight setpoint not finite"};
@@ -14,8 +19,9 @@ Status UavBody::send_setpoint(const hal::FlightSetpoint& sp) {
 }
 
 void UavBody::step(TimePoint now, double dt) {
+  // Setpoints are in the odometry frame.
   Vec3 v_des = Vec3::Zero();  // no setpoint yet: hover
-  if (have_setpoint_) v_des = setpoint_.velocity_mps;
+  if (have_setpoint_) v_des = frame_.vector_to_world(setpoint_.velocity_mps);
   if (v_des.head<2>().norm() > config_.v_max_mps)
     v_des.head<2>() *= config_.v_max_mps / v_des.head<2>().norm();
   Vec3 dv = v_des - state_.velocity_mps;
@@ -25,7 +31,23 @@ void UavBody::step(TimePoint now, double dt) {
   state_.pose.p += state_.velocity_mps * dt;
   state_.stamp = now;
   travelled_ += state_.velocity_mps.norm() * dt;
-  pending_.push_overwrite(state_);
+  const UavOdometryErrors& e = config_.odometry;
+  if (!e.any()) {
+    pending_.push_overwrite(state_);
+    return;
+  }
+  frame_.step(dt);
+  hal::UavState measured = state_;
+  measured.pose.p = frame_.to_odometry(state_.pose.p);
+  measured.pose.q = frame_.turn() * state_.pose.q;
+  measured.velocity_mps = frame_.vector_to_odometry(state_.velocity_mps);
+  // Stamped when measured, delivered `latency` later.
+  in_flight_.push_overwrite(measured);
+  hal::UavState s;
+  while (!in_flight_.empty() && in_flight_.front().stamp + e.latency <= now) {
+    (void)in_flight_.pop_front(s);
+    pending_.push_overwrite(s);
+  }
 }
 
 }  // namespace colag::sim

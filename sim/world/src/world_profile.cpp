@@ -24,6 +24,12 @@ WorldProfile field_world() {
   w.camera.outlier_max_deg = 30.0;
   w.camera.latency_ms = 60.0;
   w.camera.jitter_ms = 30.0;
+  w.uav_odometry.scale_error = 0.005;
+  w.uav_odometry.yaw_error_deg = 0.3;
+  w.uav_odometry.walk_m_per_sqrt_min = 0.02;
+  w.uav_odometry.jumps_per_min = 0.5;
+  w.uav_odometry.jump_max_m = 0.10;
+  w.uav_odometry.latency_ms = 20.0;
   w.clocks.offset_s = 10.0;
   w.clocks.drift_ppm = 30.0;
   return w;

@@ -20,6 +20,11 @@ struct FlightPlannerConfig {
   double max_climb_mps = 1.0;
   double retarget_m = 0.5;  // a target moved further than this is replanned
   Duration replan_period = std::chrono::seconds(2);
+  // The setpoints ramp from the last one, not from the measured velocity: the odometry arrives
+  // late, and a ramp restarted from a velocity one update old accelerates at a fraction of the
+  // limit. Restarted from the measurement when the vehicle is this far from the last setpoint
+  // (a gust, a flight controller that held it).
+  double resync_mps = 0.5;
 };
 
 class FlightPlanner {
@@ -46,6 +51,8 @@ class FlightPlanner {
   bool has_target_ = false;
   TimePoint planned_at_{};
   std::uint64_t plan_failures_ = 0;
+  Vec2 last_cmd_ = Vec2::Zero();
+  bool have_cmd_ = false;
 };
 
 }  // namespace colag::uav

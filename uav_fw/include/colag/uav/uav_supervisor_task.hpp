@@ -60,6 +60,9 @@ struct UavSupervisorConfig {
   Duration plan_publish_period = std::chrono::seconds(1);
   Duration max_future_skew = std::chrono::milliseconds(200);
   Duration max_input_age = std::chrono::seconds(2);  // odometry and camera frames older: refused
+  // The odometry arrives late: its pose is moved on to the scan's stamp and to the control tick
+  // by its velocity, up to this far (see state_prediction.hpp).
+  Duration max_odometry_prediction = std::chrono::milliseconds(200);
 };
 
 enum class UavMode : std::uint8_t { kIdle, kTransit, kHover };

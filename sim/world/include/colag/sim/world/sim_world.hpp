@@ -98,6 +98,9 @@ class SimWorld {
   int ugv_count() const { return static_cast<int>(ugvs_.size()); }
   const UgvBody& ugv(int i) const;
   double min_clearance_m(int i) const;
+  // The frame the UAV's odometry (so its map, and the UGVs' estimates) is in: the world's
+  // without a UAV.
+  const OdometryFrame& odometry_frame() const;
   const std::vector<CollisionEvent>& collisions() const { return collisions_; }
   // Nothing blocks the segment: no box, and no UGV body but `except_ugv`'s (-1: none).
   bool line_of_sight(const Vec3& a, const Vec3& b, int except_ugv = -1) const;

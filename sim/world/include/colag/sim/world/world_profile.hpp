@@ -36,6 +36,16 @@ struct CameraProfile {
   double jitter_ms = 0.0;   // + uniform 0..jitter
 };
 
+// The UAV's odometry, as a LiDAR-inertial odometry gives it (see UavOdometryErrors).
+struct UavOdometryProfile {
+  double scale_error = 0.0;
+  double yaw_error_deg = 0.0;
+  double walk_m_per_sqrt_min = 0.0;
+  double jumps_per_min = 0.0;
+  double jump_max_m = 0.0;
+  double latency_ms = 0.0;
+};
+
 struct ClockProfile {
   double offset_s = 0.0;   // each UGV's clock within +-this of the UAV's
   double drift_ppm = 0.0;  // each crystal within +-this
@@ -46,6 +56,7 @@ struct WorldProfile {
   WheelProfile wheels;
   LidarProfile lidar;
   CameraProfile camera;
+  UavOdometryProfile uav_odometry;
   ClockProfile clocks;
 };
 
