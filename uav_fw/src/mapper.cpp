@@ -37,6 +37,7 @@ Mapper::Mapper(const MapperConfig& config, ForkJoin* fork_join)
       fork_join_(fork_join),
       hit_(to_units(config.p_hit)),
       miss_(to_units(config.p_miss)),
+      weak_miss_(to_units(config.p_miss_inferred)),
       min_(to_units(config.p_min)),
       max_(to_units(config.p_max)),
       occupied_(to_units(config.p_occupied)) {
@@ -71,12 +72,12 @@ inline bool Mapper::add_once(std::int8_t* logodds, std::uint64_t* touched, std::
 // earlier rays have done the work. Stopping early only ever skips miss updates, so it never
 // creates free space (a test compares it with full tracing).
 bool Mapper::trace(const Vec3& a, const Vec3& b, VoxelLayer stop, bool first_is_end, bool hit,
-                   Runs& runs, Part& part, Bits& bits) {
+                   bool weak, Runs& runs, Part& part, Bits& bits) {
   // Everything the loop touches is a local: the map's int8 writes may alias any memory, so
   // members, counters and the runs would otherwise be reloaded and stored at every voxel.
   std::int8_t* const logodds = logodds_.data();
   std::uint64_t* const touched = bits.touched.data();
-  const int lo = min_, hi = max_, miss = miss_;
+  const int lo = min_, hi = max_, miss = weak ? weak_miss_ : miss_;
   const int stop_unchanged = config_.early_stop_voxels;
   const int stop_crossed = config_.early_stop_crossed;
   int unchanged = runs.unchanged, crossed = runs.crossed;
@@ -163,6 +164,7 @@ void Mapper::prepare(const Pose3& sensor, const hal::LidarScanView& scan, int to
     Ray& ray = rays_[k];
     ray.end = Vec3(ex, ey, ez);
     ray.hit = returns && within;
+    ray.weak = !returns && scan.misses_inferred;
     double ux = (ex - lo.x()) * inv_res, uy = (ey - lo.y()) * inv_res, uz = (ez - lo.z()) * inv_res;
     // A non-finite point ends up here too (NaN, or infinity scaled to NaN), and is dropped.
     // Six comparisons and-ed without a branch each (int: & on bools is a mistake to clang).
@@ -271,7 +273,7 @@ void Mapper::trace_half(const Vec3& origin, Cut cut, int side, Part& part, Bits&
     for (const std::uint32_t k : ends_of(end, chunk)) {
       const Ray& ray = rays_[k];
       Runs runs;
-      if (trace(ray.end, origin, slice, true, ray.hit, runs, part, bits)) {
+      if (trace(ray.end, origin, slice, true, ray.hit, ray.weak, runs, part, bits)) {
         (void)part.resume.push_back({k, static_cast<std::uint8_t>(std::min(runs.unchanged, 255)),
                                      static_cast<std::uint8_t>(std::min(runs.crossed, 255))});
       }
@@ -376,7 +378,8 @@ void Mapper::insert_scan(const Pose3& sensor, const hal::LidarScanView& scan) {
   for (const Chunk& chunk : chunks_) {
     for (const std::uint32_t k : ends_of(kSlice, chunk)) {
       Runs runs;
-      (void)trace(rays_[k].end, sensor.p, VoxelLayer{}, true, rays_[k].hit, runs, serial, bits);
+      (void)trace(rays_[k].end, sensor.p, VoxelLayer{}, true, rays_[k].hit, rays_[k].weak, runs,
+                  serial, bits);
     }
   }
   for (int k = 0; k < 2; ++k) {
@@ -386,7 +389,7 @@ void Mapper::insert_scan(const Pose3& sensor, const hal::LidarScanView& scan) {
       const Ray& ray = rays_[r.ray];
       Runs runs{r.unchanged, r.crossed};
       (void)trace(point_at(ray.end, sensor.p, cut.axis, edge), sensor.p, VoxelLayer{}, false, false,
-                  runs, serial, bits);
+                  ray.weak, runs, serial, bits);
       ++counters_.rays_resumed;
     }
   }

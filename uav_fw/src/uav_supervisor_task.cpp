@@ -57,6 +57,7 @@ UavSupervisorTask::UavSupervisorTask(const UavSupervisorConfig& config,
       scheduling_loop_(*this, "uav_scheduling", &UavSupervisorTask::init,
                        &UavSupervisorTask::scheduling_step),
       mapper_(mapper_config(config), fork_join),
+      no_returns_(config.lidar_pattern),
       team_filter_(config.team),
       sharer_(config.sharer),
       flight_cutter_(flight_cutter_config(config)),
@@ -137,7 +138,8 @@ void UavSupervisorTask::mapping_step(TimePoint now) {
     const Pose3 sensor = predict_state(state_, scan.stamp, config_.max_odometry_prediction)
                              .pose.compose(config_.lidar_mount);
     filter_team(now);
-    mapper_.insert_scan(sensor, team_filter_.apply(scan, sensor, mapper_));
+    // Misses from the pattern first: a UGV's return the team filter drops is not free space.
+    mapper_.insert_scan(sensor, team_filter_.apply(no_returns_.complete(scan), sensor, mapper_));
   }
   if (have_state_ && elapsed(now, flight_layer_at_, config_.flight_layer_period)) {
     flight_layer_at_ = now;

@@ -77,10 +77,20 @@ class ReferenceFrameTask final : public platform::Task {
   uav::ClockServer clock_;
 };
 
+// What the firmware is told of its LiDAR: the simulated one's pattern.
+uav::LidarBeamPattern beam_pattern_of(const sim::LidarPattern& p) {
+  return {p.beams, p.lowest_elevation_deg, p.elevation_step_deg, p.columns};
+}
+
 class SelfPerceptionTask final : public platform::Task {
  public:
-  SelfPerceptionTask(platform::Transport& t, sim::SimWorld& world, int id)
-      : transport_(t), world_(world), id_(id), mapper_(std::make_unique<uav::Mapper>()) {}
+  SelfPerceptionTask(platform::Transport& t, sim::SimWorld& world, int id,
+                     const uav::LidarBeamPattern& pattern)
+      : transport_(t),
+        world_(world),
+        id_(id),
+        mapper_(std::make_unique<uav::Mapper>()),
+        no_returns_(pattern) {}
   const char* name() const override { return "self_perception"; }
   void step(TimePoint now) override {
     const Pose2& g = world_.ugv(id_).pose();
@@ -95,7 +105,7 @@ class SelfPerceptionTask final : public platform::Task {
                         other.pose().yaw_rad, other.speed_mps());
       }
       const Pose3 sensor{Vec3(g.p.x(), g.p.y(), 0.4), quat_from_yaw(g.yaw_rad)};
-      mapper_->insert_scan(sensor, team_.apply(scan, sensor, *mapper_));
+      mapper_->insert_scan(sensor, team_.apply(no_returns_.complete(scan), sensor, *mapper_));
     }
     msg::RelativePose rp;  // the true pose, relative to the reference frame
     rp.stamp = now;
@@ -123,6 +133,7 @@ class SelfPerceptionTask final : public platform::Task {
   sim::SimWorld& world_;
   int id_;
   std::unique_ptr<uav::Mapper> mapper_;
+  uav::NoReturnBeams no_returns_;
   uav::TeamFilter team_;
   uav::MapSharer sharer_;
 };
@@ -347,7 +358,8 @@ std::unique_ptr<Mission> Mission::compose(const MissionConfig& cfg, std::string&
   wc.lidar.columns = cfg.lidar_columns;
   wc.ugv.encoder_bias = cfg.faults.odom_bias;
   wc.camera = camera_of(cfg.world.camera);
-  wc.lidar_errors = {cfg.world.lidar.range_sigma_m, cfg.world.lidar.dropout};
+  wc.lidar_errors = {cfg.world.lidar.range_sigma_m, cfg.world.lidar.dropout,
+                     cfg.world.lidar.returns_only};
   wc.uav.odometry = uav_odometry_of(cfg.world.uav_odometry);
   wc.uav.seed = cfg.seed * 104729ULL + 3;
   const std::vector<sim::WheelErrors> wheels = draw_wheels(cfg);
@@ -367,6 +379,7 @@ std::unique_ptr<Mission> Mission::compose(const MissionConfig& cfg, std::string&
       uc.scheduler.mode = uav::ScheduleMode::kNoScheduling;
     if (cfg.ablation == Ablation::kNoTimeWindows)
       uc.scheduler.mode = uav::ScheduleMode::kNoTimeWindows;
+    uc.lidar_pattern = beam_pattern_of(wc.lidar);
     sim::SimWorld& w = *p->world;
     p->uav = std::make_unique<uav::UavSupervisorTask>(uc, *p->bus, w.uav(), w.uav_lidar(),
                                                       w.uav_camera(), w.uav(), p->pool.get());
@@ -405,7 +418,8 @@ std::unique_ptr<Mission> Mission::compose(const MissionConfig& cfg, std::string&
     s.outbox = std::make_unique<platform::LaneOutbox>(*p->bus);
     s.task = std::make_unique<ugv::UgvNavTask>(nc, *s.outbox, *s.odometry, *s.drive);
     if (cfg.self_perception)
-      s.perception = std::make_unique<SelfPerceptionTask>(*s.outbox, *p->world, i);
+      s.perception =
+          std::make_unique<SelfPerceptionTask>(*s.outbox, *p->world, i, beam_pattern_of(wc.lidar));
   }
   for (const UgvStack& s : p->ugvs)
     p->flush.outboxes.push_back(s.outbox.get());

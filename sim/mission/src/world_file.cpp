@@ -37,9 +37,10 @@ bool load_world_file(const std::string& file, sim::WorldProfile& out, std::strin
   r.get(wheels, "wheels", "slip_per_mps2", w.wheels.slip_per_mps2, 0.0, 1.0);
   r.get(wheels, "wheels", "yaw_rate_bias_radps", w.wheels.yaw_rate_bias_radps, 0.0, 0.5);
   const YAML::Node lidar = board::child(root, "lidar");
-  r.only(lidar, "lidar", {"range_sigma_m", "dropout"});
+  r.only(lidar, "lidar", {"range_sigma_m", "dropout", "returns_only"});
   r.get(lidar, "lidar", "range_sigma_m", w.lidar.range_sigma_m, 0.0, 0.5);
   r.get(lidar, "lidar", "dropout", w.lidar.dropout, 0.0, 0.9);
+  r.get(lidar, "lidar", "returns_only", w.lidar.returns_only);
   const YAML::Node cam = board::child(root, "camera");
   r.only(cam, "camera",
          {"range_m", "fov_half_angle_deg", "sigma_position_m", "sigma_yaw_deg", "true_sigma_scale",

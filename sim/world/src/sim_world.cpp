@@ -30,6 +30,7 @@ class SimWorld::ScanDevice final : public hal::Lidar {
         noisy_.push_back({q.x_m * k, q.y_m * k, q.z_m * k});
       }
       points_ = noisy_;
+      if (errors_.returns_only) misses_ = {};
     }
     stamp_ = now;
     fresh_ = true;

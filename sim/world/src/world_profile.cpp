@@ -16,6 +16,7 @@ WorldProfile field_world() {
   w.wheels.yaw_rate_bias_radps = 0.01;
   w.lidar.range_sigma_m = 0.02;
   w.lidar.dropout = 0.05;
+  w.lidar.returns_only = true;
   w.camera.fov_half_angle_deg = 75.0;
   w.camera.true_sigma_scale = 1.5;
   w.camera.miss = 0.10;

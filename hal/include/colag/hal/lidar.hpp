@@ -17,6 +17,9 @@ struct LidarScanView {
   std::span<const LidarPoint> points;  // returns only (no-return beams are absent)
   // Beams without a return: their end points at max range, so the mapper can clear free space.
   std::span<const LidarPoint> misses;
+  // The misses are inferred from the sensor's pattern (a beam with no return), not reported by
+  // it: the beam may have been lost on a dark surface, so they are weaker evidence.
+  bool misses_inferred = false;
 };
 
 class Lidar {

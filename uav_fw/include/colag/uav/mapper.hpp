@@ -38,6 +38,10 @@ enum class MapperSplit : std::uint8_t {
 struct MapperConfig {
   double p_hit = 0.85;
   double p_miss = 0.35;
+  // A miss the firmware inferred (a beam of the pattern with no return: see no_return_beams.hpp)
+  // may be a return lost on a dark surface: it takes four of them to clear a voxel one hit made
+  // occupied, so a lost return does not open a hole in a box.
+  double p_miss_inferred = 0.47;
   double p_min = 0.12;
   double p_max = 0.90;
   double p_occupied = 0.80;
@@ -105,6 +109,7 @@ class Mapper {
     Vec3 end = Vec3::Zero();  // world frame, cut at the maximum range and at the grid's edge
     std::uint32_t voxel = 0;  // linear index of the end voxel
     bool hit = false;         // ends on a return
+    bool weak = false;        // an inferred miss (MapperConfig::p_miss_inferred)
   };
   // Where a ray ends, relative to the sensor's voxel slice (its row or column): it decides who
   // traces it. Low: the lower indices (south or west).
@@ -156,8 +161,8 @@ class Mapper {
   void trace_half(const Vec3& origin, Cut cut, int side, Part& part, Bits& bits);
   // Back-traces a->b (a is the ray's end side), stopping in front of `stop`; false if an early
   // stop ended it.
-  bool trace(const Vec3& a, const Vec3& b, VoxelLayer stop, bool first_is_end, bool hit, Runs& runs,
-             Part& part, Bits& bits);
+  bool trace(const Vec3& a, const Vec3& b, VoxelLayer stop, bool first_is_end, bool hit, bool weak,
+             Runs& runs, Part& part, Bits& bits);
   // Sets voxel i's per-scan bit and adds `delta` to its log-odds, clamped to [lo, hi]; true if
   // the log-odds changed.
   static bool add_once(std::int8_t* logodds, std::uint64_t* touched, std::size_t i, int delta,
@@ -169,7 +174,7 @@ class Mapper {
   MapperConfig config_;
   ForkJoin* fork_join_;
   int reach_;  // voxels a ray can reach from the sensor's along x or y (max range + margin)
-  std::int8_t hit_, miss_, min_, max_, occupied_;
+  std::int8_t hit_, miss_, weak_miss_, min_, max_, occupied_;
   MapperCounters counters_;
   std::array<std::int8_t, limits::kGridCells3d> logodds_;
   std::array<Bits, 2> bits_;                         // half k's; the slice uses half 0's

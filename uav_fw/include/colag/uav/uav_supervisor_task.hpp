@@ -23,6 +23,7 @@
 #include "colag/uav/flight_planner.hpp"
 #include "colag/uav/map_sharer.hpp"
 #include "colag/uav/mapper.hpp"
+#include "colag/uav/no_return_beams.hpp"
 #include "colag/uav/scheduler.hpp"
 #include "colag/uav/team_filter.hpp"
 #include "colag/uav/uav_schedule.hpp"
@@ -40,8 +41,9 @@ struct UavSupervisorConfig {
   // The paper's fallback when no order meets every deadline: plan as if v_max were 1.5x, 2.25x,
   // ... higher until one does (up to 100 times). Off: minimise total lateness instead.
   bool vmax_escalation = false;
-  Pose3 lidar_mount;              // LiDAR frame -> UAV body
-  double arrival_radius_m = 1.0;  // at a support point when this close (2-D)
+  Pose3 lidar_mount;               // LiDAR frame -> UAV body
+  LidarBeamPattern lidar_pattern;  // its beams: those without a return are free space
+  double arrival_radius_m = 1.0;   // at a support point when this close (2-D)
   // At a support point the UAV circles it at this radius and speed instead of hovering still:
   // the LiDAR sees nothing steeper than -25 deg, so a still UAV leaves a ~1.7 m blind disc
   // exactly where it is meant to look. Circling, every cell near the point is seen from a side.
@@ -168,6 +170,7 @@ class UavSupervisorTask {
   TimePoint last_control_{};
   TimePoint flight_layer_at_ = kNever;
   Mapper mapper_;
+  NoReturnBeams no_returns_;
   TeamFilter team_filter_;
   MapSharer sharer_;
   MapSharer flight_cutter_;  // cuts flight-altitude patches for the flight layer

@@ -48,7 +48,8 @@ struct CameraConfig {
 struct LidarErrors {
   double range_sigma_m = 0.0;
   double dropout = 0.0;
-  bool any() const { return range_sigma_m > 0.0 || dropout > 0.0; }
+  bool returns_only = false;  // as a real driver: no list of the beams that saw nothing
+  bool any() const { return range_sigma_m > 0.0 || dropout > 0.0 || returns_only; }
 };
 
 struct SimWorldConfig {

@@ -20,6 +20,7 @@ struct WheelProfile {
 struct LidarProfile {
   double range_sigma_m = 0.0;  // Gaussian range noise of each return
   double dropout = 0.0;        // share of returns lost (dark or specular surfaces)
+  bool returns_only = false;   // no-return beams not reported (as a real driver)
 };
 
 struct CameraProfile {

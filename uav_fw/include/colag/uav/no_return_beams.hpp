@@ -1,0 +1,56 @@
+#pragma once
+// A real LiDAR driver reports returns only: a beam that saw nothing within range is simply not
+// in the scan. Free space along it is still worth knowing (the sky over a box field, the far
+// side of an open square), and the sensor's pattern says which beams fired: every beam of the
+// pattern without a return becomes a miss at maximum range, as the mapper expects them.
+//
+// What it cannot know: a beam lost on a dark or specular surface, or one that hit something
+// closer than the sensor's minimum range. The scan says its misses are inferred, and the mapper
+// counts them as weaker evidence (MapperConfig::p_miss_inferred), so a lost return does not open
+// a hole in a box; a surface within the minimum range (a metre) of the LiDAR is one the UAV's
+// flight layer keeps it away from.
+//
+// A spinning LiDAR's pattern: beams at fixed elevations, fired in `columns` equal azimuth steps
+// from the sensor's x axis. A pattern with no beams (a non-repetitive scanner, a pattern not
+// configured) infers nothing.
+#include <cstdint>
+#include <vector>
+
+#include "colag/hal/lidar.hpp"
+
+namespace colag::uav {
+
+struct LidarBeamPattern {
+  int beams = 0;  // 0: unknown, nothing is inferred
+  double lowest_elevation_deg = -25.2;
+  double elevation_step_deg = 1.2;
+  int columns = 1200;
+};
+
+struct NoReturnCounters {
+  std::uint64_t scans_completed = 0;
+  std::uint64_t misses_inferred = 0;
+  std::uint64_t returns_off_pattern = 0;  // between the beams' elevations: not binned
+};
+
+class NoReturnBeams {
+ public:
+  // Allocates its tables here, never after. A pattern beyond the limits' beams x columns is
+  // treated as unknown.
+  explicit NoReturnBeams(const LidarBeamPattern& pattern = {});
+
+  // The scan with its no-return beams as misses. A scan that already lists misses, or one from
+  // an unknown pattern, is returned as it is. The view is valid until the next call.
+  hal::LidarScanView complete(const hal::LidarScanView& scan);
+  const NoReturnCounters& counters() const { return counters_; }
+  bool knows_pattern() const { return pattern_.beams > 0; }
+
+ private:
+  LidarBeamPattern pattern_;
+  std::vector<hal::LidarPoint> directions_;  // unit vector per (column, beam), column-major
+  std::vector<std::uint8_t> returned_;       // per (column, beam), of the scan being completed
+  std::vector<hal::LidarPoint> misses_;
+  NoReturnCounters counters_;
+};
+
+}  // namespace colag::uav

@@ -1,0 +1,72 @@
+#include "colag/uav/no_return_beams.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "colag/common/limits.hpp"
+
+namespace colag::uav {
+
+NoReturnBeams::NoReturnBeams(const LidarBeamPattern& pattern) : pattern_(pattern) {
+  const bool fits = pattern.beams > 0 && pattern.columns > 0 &&
+                    static_cast<std::size_t>(pattern.beams) <= limits::kMaxLidarBeams &&
+                    static_cast<std::size_t>(pattern.columns) <= limits::kMaxLidarColumns &&
+                    pattern.elevation_step_deg > 0.0;
+  if (!fits) {
+    pattern_.beams = 0;
+    return;
+  }
+  const auto n =
+      static_cast<std::size_t>(pattern.beams) * static_cast<std::size_t>(pattern.columns);
+  directions_.reserve(n);
+  for (int c = 0; c < pattern.columns; ++c) {
+    const double az = 2.0 * M_PI * c / pattern.columns;
+    for (int b = 0; b < pattern.beams; ++b) {
+      const double el =
+          (pattern.lowest_elevation_deg + b * pattern.elevation_step_deg) * M_PI / 180.0;
+      directions_.push_back({static_cast<float>(std::cos(el) * std::cos(az)),
+                             static_cast<float>(std::cos(el) * std::sin(az)),
+                             static_cast<float>(std::sin(el))});
+    }
+  }
+  returned_.assign(n, 0);
+  misses_.reserve(n);
+}
+
+hal::LidarScanView NoReturnBeams::complete(const hal::LidarScanView& scan) {
+  if (pattern_.beams == 0 || !scan.misses.empty() || !(scan.max_range_m > 0.0F)) return scan;
+  std::fill(returned_.begin(), returned_.end(), std::uint8_t{0});
+  const double to_beam = 1.0 / pattern_.elevation_step_deg;
+  const double to_column = pattern_.columns / (2.0 * M_PI);
+  for (const hal::LidarPoint& p : scan.points) {
+    const double horizontal = std::hypot(double{p.x_m}, double{p.y_m});
+    const double el_deg = std::atan2(double{p.z_m}, horizontal) * 180.0 / M_PI;
+    const double b = (el_deg - pattern_.lowest_elevation_deg) * to_beam;
+    const double bi = std::round(b);
+    // Half a step off every beam (or not finite): not a beam of this pattern.
+    if (!(std::abs(b - bi) <= 0.25) || bi < 0.0 || bi >= pattern_.beams) {
+      ++counters_.returns_off_pattern;
+      continue;
+    }
+    double az = std::atan2(double{p.y_m}, double{p.x_m});
+    if (az < 0.0) az += 2.0 * M_PI;
+    const auto c = static_cast<int>(std::lround(az * to_column)) % pattern_.columns;
+    returned_[static_cast<std::size_t>(c) * static_cast<std::size_t>(pattern_.beams) +
+              static_cast<std::size_t>(bi)] = 1;
+  }
+  misses_.clear();
+  const float r = scan.max_range_m;
+  for (std::size_t k = 0; k < returned_.size(); ++k) {
+    if (returned_[k] != 0) continue;
+    const hal::LidarPoint& d = directions_[k];
+    misses_.push_back({d.x_m * r, d.y_m * r, d.z_m * r});
+  }
+  ++counters_.scans_completed;
+  counters_.misses_inferred += misses_.size();
+  hal::LidarScanView out = scan;
+  out.misses = misses_;
+  out.misses_inferred = true;
+  return out;
+}
+
+}  // namespace colag::uav
