@@ -36,13 +36,18 @@ MapperConfig mapper_config(const UavSupervisorConfig& c) {
   return m;
 }
 
+UavSupervisorConfig with_camera_altitude(UavSupervisorConfig c) {
+  c.flight.altitude_m = camera_altitude(c.camera_view, c.flight.altitude_m, c.max_altitude_m);
+  return c;
+}
+
 }  // namespace
 
 UavSupervisorTask::UavSupervisorTask(const UavSupervisorConfig& config,
                                      platform::Transport& transport, hal::OdometrySource& odometry,
                                      hal::Lidar& lidar, hal::RelativePoseSensor& camera,
                                      hal::FlightController& flight, ForkJoin* fork_join)
-    : config_(config),
+    : config_(with_camera_altitude(config)),
       transport_(transport),
       odometry_(odometry),
       lidar_(lidar),
@@ -56,13 +61,13 @@ UavSupervisorTask::UavSupervisorTask(const UavSupervisorConfig& config,
                     &UavSupervisorTask::sharing_step),
       scheduling_loop_(*this, "uav_scheduling", &UavSupervisorTask::init,
                        &UavSupervisorTask::scheduling_step),
-      mapper_(mapper_config(config), fork_join),
+      mapper_(mapper_config(config_), fork_join),
       no_returns_(config.lidar_pattern),
       team_filter_(config.team),
       sharer_(config.sharer),
-      flight_cutter_(flight_cutter_config(config)),
-      flight_layer_(flight_layer_config(config)),
-      flight_(config.flight),
+      flight_cutter_(flight_cutter_config(config_)),
+      flight_layer_(flight_layer_config(config_)),
+      flight_(config_.flight),
       scheduler_(config.scheduler) {
   const Duration skew = config.max_future_skew;
   odometry_stamps_ = StampGate({skew, config.max_input_age, true});

@@ -380,6 +380,8 @@ std::unique_ptr<Mission> Mission::compose(const MissionConfig& cfg, std::string&
     if (cfg.ablation == Ablation::kNoTimeWindows)
       uc.scheduler.mode = uav::ScheduleMode::kNoTimeWindows;
     uc.lidar_pattern = beam_pattern_of(wc.lidar);
+    uc.camera_view = {wc.camera.range_m, wc.camera.fov_half_angle_rad * 180.0 / M_PI,
+                      wc.camera.tag_height_m};
     sim::SimWorld& w = *p->world;
     p->uav = std::make_unique<uav::UavSupervisorTask>(uc, *p->bus, w.uav(), w.uav_lidar(),
                                                       w.uav_camera(), w.uav(), p->pool.get());

@@ -19,6 +19,7 @@
 #include "colag/hal/relative_pose_sensor.hpp"
 #include "colag/msg/support_plan.hpp"
 #include "colag/platform/readers.hpp"
+#include "colag/uav/camera_altitude.hpp"
 #include "colag/uav/clock_server.hpp"
 #include "colag/uav/flight_planner.hpp"
 #include "colag/uav/map_sharer.hpp"
@@ -43,7 +44,15 @@ struct UavSupervisorConfig {
   bool vmax_escalation = false;
   Pose3 lidar_mount;               // LiDAR frame -> UAV body
   LidarBeamPattern lidar_pattern;  // its beams: those without a return are free space
-  double arrival_radius_m = 1.0;   // at a support point when this close (2-D)
+  // Its camera's view of the UGVs' tags: it flies where it sees the widest disc of them, at
+  // least at flight.altitude_m and at most at max_altitude_m (see camera_altitude.hpp).
+  CameraView camera_view;
+  // The LiDAR sees nothing steeper than its lowest beam: its blind disc under the UAV grows
+  // with the altitude ((h - 0.1) / tan 25.2 deg = 3.2 m at 1.6 m), and higher up the ground
+  // around a UGV it supports goes unmapped (a 60 deg / 4 m camera flying at 2.3 m left a UGV
+  // without a path for 200 s).
+  double max_altitude_m = 1.6;
+  double arrival_radius_m = 1.0;  // at a support point when this close (2-D)
   // At a support point the UAV circles it at this radius and speed instead of hovering still:
   // the LiDAR sees nothing steeper than -25 deg, so a still UAV leaves a ~1.7 m blind disc
   // exactly where it is meant to look. Circling, every cell near the point is seen from a side.
