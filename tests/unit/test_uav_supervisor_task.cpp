@@ -51,7 +51,9 @@ class Sky final : public platform::Task {
     if (++ticks_ % 5 == 0) {  // 10 Hz
       std::span<const hal::LidarPoint> pts, misses;
       sim_->scan(world_, s.pose, pts, misses);
-      (void)lidar_.set_scan(now, 8.0F, pts, misses);
+      // A real driver's scan (returns only) when asked; the misses listed otherwise.
+      (void)lidar_.set_scan(now, 8.0F, pts,
+                            returns_only ? std::span<const hal::LidarPoint>{} : misses);
       hal::scripted::ScriptedRelativePoseSensor::Frame frame;
       for (std::size_t i = 0; i < ugvs.size(); ++i) {
         const auto id = static_cast<RobotId>(i);
@@ -71,6 +73,7 @@ class Sky final : public platform::Task {
   Vec3 v = Vec3::Zero();
   double travelled = 0.0;
   std::vector<Vec2> ugvs;  // where the UGVs are (for the camera)
+  bool returns_only = false;
 
  private:
   hal::scripted::ScriptedOdometrySource& odom_;
@@ -94,7 +97,7 @@ class Collect final : public platform::SampleSink {
 
 struct Rig {
   // `fork_join` (optional): the mapper splits each scan over its workers, as on a board.
-  explicit Rig(ForkJoin* fork_join = nullptr) {
+  explicit Rig(ForkJoin* fork_join = nullptr, const UavSupervisorConfig& config = {}) {
     sim::MapGenConfig cfg;
     cfg.boxes = 40;
     cfg.seed = 3;
@@ -102,8 +105,7 @@ struct Rig {
     bus = std::make_unique<platform::LoopbackTransport>(1);
     lidar = std::make_unique<hal::scripted::ScriptedLidar>();
     sky = std::make_unique<Sky>(odom, *lidar, camera, fc, world);
-    uav = std::make_unique<UavSupervisorTask>(UavSupervisorConfig{}, *bus, odom, *lidar, camera, fc,
-                                              fork_join);
+    uav = std::make_unique<UavSupervisorTask>(config, *bus, odom, *lidar, camera, fc, fork_join);
     pump = std::make_unique<platform::TransportPump>(*bus);
     EXPECT_TRUE(bus->subscribe(msg::topic_of<msg::MapPatch>, kAnyRobot, patches));
     EXPECT_TRUE(bus->subscribe(msg::topic_of<msg::SupportPlan>, kAnyRobot, plans));
@@ -272,9 +274,18 @@ TEST(UavSupervisorTask, PatchesAreHundredsOfTimesSmallerThanTheOriginalFormat) {
 }
 
 // Counted on every thread: the mapper's work on the pool's worker thread is the task's too.
-TEST(UavSupervisorTask, StepsAllocateNothingInSteadyState) {
+// Twice: scans that list their misses, and a real driver's (returns only, the misses inferred
+// from the LiDAR's pattern).
+class UavSupervisorSteps : public ::testing::TestWithParam<bool> {};
+INSTANTIATE_TEST_SUITE_P(Scans, UavSupervisorSteps, ::testing::Values(false, true),
+                         [](const auto& p) { return p.param ? "ReturnsOnly" : "WithMisses"; });
+
+TEST_P(UavSupervisorSteps, AllocateNothingInSteadyState) {
   platform::WorkerPool pool(1);
-  Rig rig(&pool);
+  UavSupervisorConfig config;
+  config.lidar_pattern.beams = 32;  // the simulated VLP-32's (the other fields' defaults)
+  Rig rig(&pool, config);
+  rig.sky->returns_only = GetParam();
   rig.sky->ugvs = {Vec2(2, 1), Vec2(-3, 2)};
   rig.status(0, Vec2(2, 1));
   rig.status(1, Vec2(-3, 2));
@@ -295,6 +306,7 @@ TEST(UavSupervisorTask, StepsAllocateNothingInSteadyState) {
     EXPECT_EQ(counter.count(), 0u);
   }
   EXPECT_GT(rig.uav->mapper().counters().scans, 10u);
+  EXPECT_EQ(rig.uav->no_return_beams().counters().scans_completed > 0, GetParam());
   EXPECT_GT(rig.uav->health().patches_sent, 0u);
   EXPECT_GT(rig.uav->health().rpe_published, 0u);
 }

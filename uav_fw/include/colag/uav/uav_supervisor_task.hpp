@@ -117,6 +117,7 @@ class UavSupervisorTask {
   const Mapper& mapper() const { return mapper_; }
   const MapSharer& sharer() const { return sharer_; }
   const TeamFilter& team_filter() const { return team_filter_; }
+  const NoReturnBeams& no_return_beams() const { return no_returns_; }
   const ScheduleResult& schedule() const { return schedule_; }
   const msg::SupportPlan& plan() const { return plan_; }
   UavMode mode() const { return mode_; }
