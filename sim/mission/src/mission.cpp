@@ -407,8 +407,7 @@ std::unique_ptr<Mission> Mission::compose(const MissionConfig& cfg, std::string&
     nc.id = static_cast<RobotId>(i);
     nc.goal = map_frame.to_odometry(s.goal);
     nc.has_start_guess = true;
-    const Pose2 start = ugv_start(i);
-    nc.start_guess = {map_frame.to_odometry(start.p), start.yaw_rad + map_frame.yaw_error_rad()};
+    nc.start_guess = map_frame.to_odometry(ugv_start(i));
     nc.use_rpe_updates = cfg.ablation != Ablation::kNoRpe;
     nc.predictor.use_uncertainty = cfg.ablation != Ablation::kNoUncertainty;
     nc.predictor.horizon_m = cfg.predict_horizon_m;
@@ -515,10 +514,10 @@ void Mission::fly(MissionTrace* trace) {
       const UgvEkf& ekf = task.estimator();
       // Its estimate is in the UAV odometry's frame: so is the truth it is held against.
       if (ekf.initialized() && task.mode() != msg::UgvMode::kArrived && !body.frozen()) {
-        const sim::OdometryFrame& frame = p.world->odometry_frame();
+        const Pose2 truth = p.world->odometry_frame().to_odometry(now_pose);
         Vec3 e;
-        e.head<2>() = ekf.pose().p - frame.to_odometry(now_pose.p);
-        e.z() = wrap_angle(ekf.pose().yaw_rad - now_pose.yaw_rad - frame.yaw_error_rad());
+        e.head<2>() = ekf.pose().p - truth.p;
+        e.z() = wrap_angle(ekf.pose().yaw_rad - truth.yaw_rad);
         const double nees = e.dot(ekf.covariance().ldlt().solve(e));
         if (std::isfinite(nees)) {
           ++o.nees_samples;

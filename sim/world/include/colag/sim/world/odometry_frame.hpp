@@ -36,6 +36,7 @@ class OdometryFrame {
   // A world point, a world direction, and back.
   Vec3 to_odometry(const Vec3& p) const;
   Vec2 to_odometry(const Vec2& p) const { return to_odometry(Vec3(p.x(), p.y(), 0.0)).head<2>(); }
+  Pose2 to_odometry(const Pose2& p) const { return {to_odometry(p.p), p.yaw_rad + yaw_}; }
   Vec3 vector_to_odometry(const Vec3& v) const { return (1.0 + scale_) * (turn_ * v); }
   Vec3 vector_to_world(const Vec3& v) const { return turn_.inverse() * v / (1.0 + scale_); }
   double yaw_error_rad() const { return yaw_; }
