@@ -1,7 +1,9 @@
 #include <gtest/gtest.h>
 
 #include "colag/uav/camera_altitude.hpp"
+#include "colag/uav/no_return_beams.hpp"
 
+using namespace colag;
 using namespace colag::uav;
 
 TEST(CameraAltitude, FliesWhereTheConeMeetsTheRangeWithinItsLimits) {
@@ -24,4 +26,33 @@ TEST(CameraAltitude, FliesWhereTheConeMeetsTheRangeWithinItsLimits) {
   // Never below the lowest nor above the highest.
   EXPECT_EQ(camera_altitude({20.0, 30.0, 0.3}, 1.0, 3.0), 3.0);
   EXPECT_EQ(camera_altitude({1.0, 85.0, 0.3}, 1.0, 3.0), 1.0);
+}
+
+TEST(LidarAltitudeLimit, LeavesTheBlindDiscOnTheBodyBandNoWiderThanAsked) {
+  // -25.2 deg, the band from 0.1 m, 3.2 m: 0.1 + 3.2 tan 25.2 deg = 1.606 m.
+  const double h = lidar_altitude_limit(-25.2, 0.1, 3.2, 1.0, 3.0);
+  EXPECT_NEAR(h, 0.1 + 3.2 * std::tan(25.2 * M_PI / 180.0), 1e-12);
+  EXPECT_NEAR((h - 0.1) / std::tan(25.2 * M_PI / 180.0), 3.2, 1e-12);
+  // A steeper lowest beam flies higher, within the hard ceiling.
+  EXPECT_GT(lidar_altitude_limit(-40.0, 0.1, 3.2, 1.0, 3.0), 2.7);
+  EXPECT_EQ(lidar_altitude_limit(-60.0, 0.1, 3.2, 1.0, 3.0), 3.0);
+  EXPECT_EQ(lidar_altitude_limit(-90.0, 0.1, 3.2, 1.0, 3.0), 3.0);
+  // One that cannot look down, or is not described: no higher than the configured altitude.
+  EXPECT_EQ(lidar_altitude_limit(0.0, 0.1, 3.2, 1.0, 3.0), 1.0);
+  EXPECT_EQ(lidar_altitude_limit(15.0, 0.1, 3.2, 1.0, 3.0), 1.0);
+  EXPECT_EQ(lidar_altitude_limit(std::nan(""), 0.1, 3.2, 1.0, 3.0), 1.0);
+  EXPECT_EQ(lidar_altitude_limit(-25.2, 0.1, 0.0, 1.0, 3.0), 1.0);
+}
+
+TEST(LidarAltitudeLimit, TheBlindConeFollowsHowTheLidarIsMounted) {
+  const LidarBeamPattern vlp{32, -25.2, 1.2, 1200};
+  const auto about_y = [](double deg) {
+    return Quat(Eigen::AngleAxisd(deg * M_PI / 180.0, Vec3::UnitY()));
+  };
+  EXPECT_NEAR(blind_cone_elevation_deg(vlp, Quat::Identity()), -25.2, 1e-9);
+  // Tilted 10 deg: on one side its lowest beam looks 10 deg less down.
+  EXPECT_NEAR(blind_cone_elevation_deg(vlp, about_y(10.0)), -15.2, 0.1);
+  // Upside down, its highest beam (+12 deg) is the lowest.
+  EXPECT_NEAR(blind_cone_elevation_deg(vlp, about_y(180.0)), -(-25.2 + 31 * 1.2), 1e-6);
+  EXPECT_TRUE(std::isnan(blind_cone_elevation_deg({}, Quat::Identity())));
 }

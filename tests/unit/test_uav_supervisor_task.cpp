@@ -352,3 +352,18 @@ TEST(UavSupervisorTask, RejectsRequestsWithHostileStampsOrValues) {
   EXPECT_EQ(rig.uav->health().requests_rejected, 4u);
   EXPECT_EQ(rig.uav->schedule().order.size(), 0u);
 }
+
+TEST(UavSupervisorTask, FliesAsHighAsItsCameraWantsAndItsLidarAllows) {
+  const auto altitude = [](double lowest_beam_deg, int beams) {
+    UavSupervisorConfig c;
+    c.camera_view = {4.0, 60.0, 0.3};  // widest disc of tags from 0.3 + 4 cos 60 = 2.3 m
+    c.lidar_pattern = {beams, lowest_beam_deg, 1.2, 1200};
+    const Rig rig(nullptr, c);
+    return rig.uav->config().flight.altitude_m;
+  };
+  const double configured = UavSupervisorConfig{}.flight.altitude_m;
+  // A -25.2 deg lowest beam leaves a 3.2 m blind disc on the body band from 1.606 m.
+  EXPECT_NEAR(altitude(-25.2, 32), 0.1 + 3.2 * std::tan(25.2 * M_PI / 180.0), 1e-9);
+  EXPECT_NEAR(altitude(-40.0, 32), 2.3, 1e-9);  // a steeper one: where the camera sees most
+  EXPECT_EQ(altitude(-25.2, 0), configured);    // a LiDAR not described: as configured
+}

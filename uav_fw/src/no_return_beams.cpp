@@ -7,6 +7,27 @@
 
 namespace colag::uav {
 
+double blind_cone_elevation_deg(const LidarBeamPattern& pattern, const Quat& mount) {
+  if (pattern.beams <= 0 || !(pattern.elevation_step_deg > 0.0)) return std::nan("");
+  // Sampled every degree of the sensor's azimuth: a mount tilted by a few degrees moves the
+  // steepest beam's elevation by less than the sampling misses.
+  constexpr int kAzimuths = 360;
+  double least_steep = -90.0;
+  for (int a = 0; a < kAzimuths; ++a) {
+    const double az = 2.0 * M_PI * a / kAzimuths;
+    double steepest = 90.0;
+    for (int b = 0; b < pattern.beams; ++b) {
+      const double el =
+          (pattern.lowest_elevation_deg + b * pattern.elevation_step_deg) * M_PI / 180.0;
+      const Vec3 d =
+          mount * Vec3(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el));
+      steepest = std::min(steepest, std::asin(std::clamp(d.z(), -1.0, 1.0)) * 180.0 / M_PI);
+    }
+    least_steep = std::max(least_steep, steepest);
+  }
+  return least_steep;
+}
+
 NoReturnBeams::NoReturnBeams(const LidarBeamPattern& pattern) : pattern_(pattern) {
   const bool fits = pattern.beams > 0 && pattern.columns > 0 &&
                     static_cast<std::size_t>(pattern.beams) <= limits::kMaxLidarBeams &&

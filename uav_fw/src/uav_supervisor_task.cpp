@@ -37,7 +37,11 @@ MapperConfig mapper_config(const UavSupervisorConfig& c) {
 }
 
 UavSupervisorConfig with_camera_altitude(UavSupervisorConfig c) {
-  c.flight.altitude_m = camera_altitude(c.camera_view, c.flight.altitude_m, c.max_altitude_m);
+  const double lowest_beam = blind_cone_elevation_deg(c.lidar_pattern, c.lidar_mount.q);
+  const double highest =
+      lidar_altitude_limit(lowest_beam, c.sharer.band_low_m, c.max_blind_radius_m,
+                           c.flight.altitude_m, c.max_altitude_m);
+  c.flight.altitude_m = camera_altitude(c.camera_view, c.flight.altitude_m, highest);
   return c;
 }
 

@@ -3,7 +3,8 @@
 // half-angle a reaches a tag h below it out to h tan(a), and the detector out to its range R:
 // the disc is widest where the two meet, h = R cos(a) above the tags (75 deg and 5 m: 1.29 m,
 // a disc of 4.8 m radius instead of 2.6 m from 0.7 m). A camera that sees in every direction (the
-// paper's) sees most from as low as it may fly.
+// paper's) sees most from as low as it may fly. How high it may fly is the LiDAR's to say: the
+// steeper its lowest beam, the smaller the blind disc it leaves under the UAV.
 #include <algorithm>
 #include <cmath>
 
@@ -20,6 +21,21 @@ inline double camera_altitude(const CameraView& v, double lowest, double highest
   if (!(v.range_m > 0.0) || v.half_angle_deg >= 90.0) return lowest;
   const double best = v.tag_height_m + v.range_m * std::cos(v.half_angle_deg * M_PI / 180.0);
   return std::clamp(best, lowest, std::max(lowest, highest));
+}
+
+// The highest a LiDAR whose lowest beam points `lowest_elevation_deg` (negative: down; see
+// blind_cone_elevation_deg) may fly
+// and still map the ground band from `band_low_m` up out to `blind_radius_m` around the point
+// under it: its blind disc at that height is (h - band_low) / tan(-lowest). A LiDAR that cannot
+// look down, or one not described (NaN), gives nothing above `lowest`; one looking straight
+// down is limited by `highest` alone.
+inline double lidar_altitude_limit(double lowest_elevation_deg, double band_low_m,
+                                   double blind_radius_m, double lowest, double highest) {
+  const double down = -lowest_elevation_deg * M_PI / 180.0;
+  if (!(down > 0.0) || !(blind_radius_m > 0.0) || !std::isfinite(band_low_m)) return lowest;
+  if (down >= M_PI / 2.0) return std::max(lowest, highest);
+  return std::clamp(band_low_m + blind_radius_m * std::tan(down), lowest,
+                    std::max(lowest, highest));
 }
 
 }  // namespace colag::uav

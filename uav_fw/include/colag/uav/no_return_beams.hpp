@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "colag/common/geometry.hpp"
 #include "colag/hal/lidar.hpp"
 
 namespace colag::uav {
@@ -26,6 +27,11 @@ struct LidarBeamPattern {
   double elevation_step_deg = 1.2;
   int columns = 1200;
 };
+
+// How far down the pattern looks everywhere around the UAV, mounted with `mount` on a level
+// body: over all azimuths, the least steep of each azimuth's steepest beam (degrees, negative:
+// down). Its blind disc on the ground is set by this beam. NaN for a pattern not known.
+double blind_cone_elevation_deg(const LidarBeamPattern& pattern, const Quat& mount);
 
 struct NoReturnCounters {
   std::uint64_t scans_completed = 0;

@@ -45,13 +45,16 @@ struct UavSupervisorConfig {
   Pose3 lidar_mount;               // LiDAR frame -> UAV body
   LidarBeamPattern lidar_pattern;  // its beams: those without a return are free space
   // Its camera's view of the UGVs' tags: it flies where it sees the widest disc of them, at
-  // least at flight.altitude_m and at most at max_altitude_m (see camera_altitude.hpp).
+  // least at flight.altitude_m and at most where the LiDAR still maps the ground around the UGV
+  // it supports (see camera_altitude.hpp).
   CameraView camera_view;
-  // The LiDAR sees nothing steeper than its lowest beam: its blind disc under the UAV grows
-  // with the altitude ((h - 0.1) / tan 25.2 deg = 3.2 m at 1.6 m), and higher up the ground
-  // around a UGV it supports goes unmapped (a 60 deg / 4 m camera flying at 2.3 m left a UGV
-  // without a path for 200 s).
-  double max_altitude_m = 1.6;
+  // The LiDAR sees nothing steeper than its lowest beam: its blind disc under the UAV grows with
+  // the altitude, and the ground around a UGV it supports goes unmapped (a 60 deg / 4 m camera
+  // flying at 2.3 m over a -25.2 deg beam, a 4.6 m disc, left a UGV without a path for 200 s).
+  // The UAV flies no higher than leaves this disc on the UGVs' body band (1.6 m for -25.2 deg),
+  // nor ever above max_altitude_m; with the pattern unknown, at flight.altitude_m.
+  double max_blind_radius_m = 3.2;
+  double max_altitude_m = 3.0;
   double arrival_radius_m = 1.0;  // at a support point when this close (2-D)
   // At a support point the UAV circles it at this radius and speed instead of hovering still:
   // the LiDAR sees nothing steeper than -25 deg, so a still UAV leaves a ~1.7 m blind disc
