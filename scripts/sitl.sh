@@ -3,12 +3,16 @@
 # separate processes — uav_fw (robot.hal: sim) and one ugv_fw per UGV (can.interface: sim) —
 # talking only over Cyclone DDS.
 #   scripts/sitl.sh [--ugvs N] [--scenario sparse|dense] [--seed S] [--max-time S]
-#                   [--json OUT] [--netns] [--loss PCT] [--domain D] [--build DIR]
+#                   [--world ideal|field|FILE] [--json OUT] [--netns] [--loss PCT] [--domain D] [--build DIR]
 #                   [--time-scale X] [--kill-ugv I@T [--restart-after S]]
 # Waits for the mission to end, writes the metrics JSON (colag_sim's schema; default
 # build/sitl/run-<pid>/metrics.json), stops every process by PID, prints a summary, and exits 0 when
 # every UGV reached its goal with no collision (1 otherwise, 2 on a usage or set-up error, 77
 # when --netns cannot work on this machine: not root, no iproute2/nftables, no namespaces).
+#   --world W   the world's profile (colag_sim's --world; default ideal): field makes the wheels,
+#               the UAV's odometry, LiDAR and camera what real ones are; uav.yaml gets the world's
+#               LiDAR pattern and camera view (colag_world --print-uav-sensors). Each robot reads
+#               this host's clock: the profile's clock offsets are colag_sim's alone.
 #   --netns     every robot in its own network namespace (the world in a hub namespace with a
 #               bridge), joined by veth pairs; all created here and removed on exit. Needs root.
 #               Prints each robot's DDS traffic (bytes/s in and out, robot-to-robot domain only).
@@ -23,16 +27,18 @@
 #               same configuration: it resumes from the pose it kept (robot.state_file).
 # Logs and configurations: build/sitl/run-<pid>/.
 set -euo pipefail
+caller=$PWD
 cd "$(dirname "$0")/.."
 
 ugvs=3 scenario=dense seed=1 max_time=400 json="" netns=0 loss=0 scale=1
-build=build/host domain="" kill_ugv="" restart_after=""
-usage() { sed -n '2,23p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
+build=build/host domain="" kill_ugv="" restart_after="" world_name=ideal
+usage() { sed -n '2,27p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
 while (($#)); do
   case "$1" in
     --ugvs) ugvs=$2; shift 2 ;;
     --scenario) scenario=$2; shift 2 ;;
     --seed) seed=$2; shift 2 ;;
+    --world) world_name=$2; [[ $2 == ideal || $2 == field || $2 == /* ]] || world_name=$caller/$2; shift 2 ;;
     --max-time) max_time=$2; shift 2 ;;
     --json) json=$2; shift 2 ;;
     --netns) netns=1; shift ;;
@@ -108,6 +114,9 @@ robot: {id: 0, hal: sim}
 dds: {domain: $domain}
 realtime: {fifo_priority: 0, lock_memory: false}
 YAML
+# The UAV's sensors as the world simulates them, described as on a board.
+"$build/bin/colag_world" --world "$world_name" --print-uav-sensors >>"$run/uav.yaml" ||
+  { echo "sitl: --world $world_name: see above" >&2; exit 2; }
 for ((i = 0; i < ugvs; ++i)); do
   x=$(lane_x "$i")
   cat >"$run/ugv$i.yaml" <<YAML
@@ -191,9 +200,9 @@ in_ns() {  # namespace command...
 # A killed robot is silent until it is started again (and found by DDS discovery).
 silence=5
 [ -z "$kill_ugv" ] || silence=$(awk -v r="${restart_after:-1e6}" 'BEGIN {print r + 30}')
-echo "sitl: $scenario, $ugvs UGVs, seed $seed, time x$scale, DDS domain $domain (sim link $((domain + 1)))$( ((netns)) && echo ", one network namespace per robot")$( ((loss)) && echo ", $loss % loss")"
+echo "sitl: $scenario, $ugvs UGVs, seed $seed, $world_name world, time x$scale, DDS domain $domain (sim link $((domain + 1)))$( ((netns)) && echo ", one network namespace per robot")$( ((loss)) && echo ", $loss % loss")"
 echo "sitl: logs and configs in $run"
-in_ns "$hub" "$build/bin/colag_world" --scenario "$scenario" --ugvs "$ugvs" --seed "$seed" \
+in_ns "$hub" "$build/bin/colag_world" --scenario "$scenario" --ugvs "$ugvs" --seed "$seed" --world "$world_name" \
   --domain "$domain" --max-time "$max_time" --json "$json" --time-scale "$scale" \
   --max-silence "$silence" >"$run/world.log" 2>&1 &
 world=$!

@@ -5,8 +5,11 @@
 // talk to each other on domain D. The world listens to the robots' own topics on D for the
 // metrics, runs in real time, and writes the same metrics JSON as colag_sim.
 //
-//   colag_world --scenario sparse --ugvs 3 --seed 1 [--domain D] [--max-time S] [--json F]
+//   colag_world --scenario sparse --ugvs 3 --seed 1 [--world ideal|field|FILE] [--domain D]
+//               [--max-time S] [--json F]
 //               [--time-scale X]   (X simulated seconds per second; the robots get the same)
+//   colag_world --world field --print-uav-sensors   (the uav.yaml sections that describe the
+//               simulated UAV's LiDAR and camera to uav_fw, as a board's config would)
 //
 // The mission clock starts when every robot has been heard (their status, the UAV's odometry).
 // Exit codes: 0 the mission ran (see the JSON for how it went), 1 DDS failed, 2 usage,
@@ -14,7 +17,9 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <fstream>
+#include <optional>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "colag/platform/dds/dds_transport.hpp"
@@ -23,28 +28,72 @@
 #include "colag/sim/bridge/world_bridge.hpp"
 #include "colag/sim/host_program.hpp"
 #include "colag/sim/mission/mission.hpp"
+#include "colag/sim/mission/world_file.hpp"
+#include "colag/sim/mission/world_setup.hpp"
 #include "colag/sim/world/sim_world.hpp"
+#include "colag/ugv/waiting.hpp"
 
 using namespace colag;
 using namespace std::chrono_literals;
 
 namespace {
 
+// Where each UGV truly was over the last second, in the UAV odometry's frame (where its
+// estimate is): a UGV's status is held against the truth at its own stamp (every process
+// reads the host's clock), not at the moment it arrives.
+class TruthHistory {
+ public:
+  explicit TruthHistory(int ugvs) : rings_(static_cast<std::size_t>(ugvs)) {}
+  void record(const sim::SimWorld& world, TimePoint now) {
+    for (std::size_t i = 0; i < rings_.size(); ++i) {
+      rings_[i][next_] = {
+          now, world.odometry_frame().to_odometry(world.ugv(static_cast<int>(i)).pose())};
+    }
+    next_ = (next_ + 1) % kSteps;
+  }
+  // The pose within 30 ms of `t`, if one was recorded.
+  std::optional<Pose2> at(std::size_t ugv, TimePoint t) const {
+    if (ugv >= rings_.size()) return std::nullopt;
+    for (const auto& [when, pose] : rings_[ugv])
+      if (when != TimePoint{} && std::abs(to_seconds(when - t)) <= 0.03) return pose;
+    return std::nullopt;
+  }
+
+ private:
+  static constexpr std::size_t kSteps = 50;  // a second of 20 ms steps
+  std::vector<std::array<std::pair<TimePoint, Pose2>, kSteps>> rings_;
+  std::size_t next_ = 0;
+};
+
 class WorldStep final : public platform::Task {
  public:
-  explicit WorldStep(sim::SimWorld& world) : world_(world) {}
+  WorldStep(sim::SimWorld& world, TruthHistory& truth) : world_(world), truth_(truth) {}
   const char* name() const override { return "world"; }
   void step(TimePoint now) override {
     // Real time: the step covers the time since the last one (more when activations were skipped).
     const double dt = last_ == TimePoint{} ? 0.02 : std::clamp(to_seconds(now - last_), 0.0, 0.1);
     last_ = now;
     world_.step(now, dt);
+    truth_.record(world_, now);
   }
 
  private:
   sim::SimWorld& world_;
+  TruthHistory& truth_;
   TimePoint last_{};
 };
+
+// The simulated UAV's sensors as uav_fw's config describes a board's (see config/uav.example.yaml).
+void print_uav_sensors(const sim::SimWorldConfig& wc) {
+  const uav::LidarBeamPattern p = mission::beam_pattern_of(wc.lidar);
+  const uav::CameraView v = mission::camera_view_of(wc.camera);
+  std::printf(
+      "lidar: {beams: %d, lowest_elevation_deg: %.3f, elevation_step_deg: %.3f, columns: %d}\n",
+      p.beams, p.lowest_elevation_deg, p.elevation_step_deg, p.columns);
+  // The simulated camera tells the UGVs apart without tags; they stand at the default height.
+  std::printf("camera: {max_range_m: %.3f, fov_half_angle_deg: %.3f}\n", v.range_m,
+              std::min(v.half_angle_deg, 180.0));
+}
 
 class BridgeStep final : public platform::Task {
  public:
@@ -58,7 +107,11 @@ class BridgeStep final : public platform::Task {
 
 // What the world hears of the robots on their own domain.
 struct RobotTraffic final : platform::SampleSink {
-  explicit RobotTraffic(int ugvs) : status(static_cast<std::size_t>(ugvs)), heard(status.size()) {}
+  RobotTraffic(int ugvs, const TruthHistory& truth)
+      : status(static_cast<std::size_t>(ugvs)),
+        heard(status.size()),
+        nees(status.size()),
+        truth_(truth) {}
   void on_sample(msg::Topic topic, const void* sample, TimePoint now) override {
     switch (topic) {
       case msg::topic_of<msg::UgvStatus>: {
@@ -66,6 +119,7 @@ struct RobotTraffic final : platform::SampleSink {
         if (s.ugv_id < status.size()) {
           status[s.ugv_id] = s;
           heard[s.ugv_id] = now;
+          add_nees(s);
         }
         break;
       }
@@ -85,11 +139,29 @@ struct RobotTraffic final : platform::SampleSink {
         break;
     }
   }
+  // How honest a UGV's covariance is: NEES of its (x, y, yaw) against the truth, while it drives
+  // (as colag_sim measures it).
+  void add_nees(const msg::UgvStatus& s) {
+    if (s.mode == msg::UgvMode::kWaitingForInit || s.mode == msg::UgvMode::kArrived) return;
+    const std::optional<Pose2> truth = truth_.at(s.ugv_id, s.stamp);
+    const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> cov(s.covariance);
+    if (!truth || !(cov.determinant() > 0.0)) return;
+    const Vec3 e(s.position_m[0] - truth->p.x(), s.position_m[1] - truth->p.y(),
+                 wrap_angle(s.yaw_rad - truth->yaw_rad));
+    const double v = e.dot(Mat3(cov).ldlt().solve(e));
+    if (!std::isfinite(v)) return;
+    auto& [mean, n] = nees[s.ugv_id];
+    mean += (v - mean) / static_cast<double>(++n);
+  }
   std::vector<msg::UgvStatus> status;
-  std::vector<TimePoint> heard;  // TimePoint{} = never
+  std::vector<TimePoint> heard;                        // TimePoint{} = never
+  std::vector<std::pair<double, std::uint64_t>> nees;  // mean, samples
   std::array<std::uint64_t, limits::kMaxUgvs> requests{};
   TimePoint uav_heard{};
   std::uint64_t patches = 0, patch_bytes = 0;
+
+ private:
+  const TruthHistory& truth_;
 };
 
 // Watches the mission every 100 ms: when it starts, who has arrived, when it is over.
@@ -106,7 +178,10 @@ class Monitor final : public platform::Task {
         max_silence_s_(max_silence_s),
         quiet_(quiet),
         reach_s_(static_cast<std::size_t>(cfg.ugvs), -1.0),
-        reached_(reach_s_.size(), false) {}
+        reached_(reach_s_.size(), false),
+        stopped_s_(reach_s_.size(), 0.0),
+        stops_(reach_s_.size(), 0),
+        still_(reach_s_.size(), false) {}
   const char* name() const override { return "monitor"; }
   void step(TimePoint now) override {
     if (created_ == TimePoint{}) created_ = now;
@@ -125,6 +200,7 @@ class Monitor final : public platform::Task {
       return;
     }
     const double t = to_seconds(now - t0_);
+    if (last_ == TimePoint{}) last_ = now;
     bool all_done = true;
     int reached = 0;
     for (int i = 0; i < cfg_.ugvs; ++i) {
@@ -135,6 +211,11 @@ class Monitor final : public platform::Task {
         return;
       }
       const bool arrived = traffic_.status[k].mode == msg::UgvMode::kArrived;
+      // Waiting as a user sees it: standing still (by the true motion) before it arrived.
+      const bool still = !arrived && std::abs(world_.ugv(i).speed_mps()) < ugv::kStillSpeed_mps;
+      if (still) stopped_s_[k] += to_seconds(now - last_);
+      if (still && !still_[k]) ++stops_[k];
+      still_[k] = still;
       if (arrived && reach_s_[k] < 0.0) {
         reach_s_[k] = t;
         reached_[k] =
@@ -149,6 +230,7 @@ class Monitor final : public platform::Task {
                   cfg_.ugvs, world_.collisions().size());
       std::fflush(stdout);
     }
+    last_ = now;
     elapsed_s_ = t;
     if (all_done || t >= cfg_.max_time_s) exec_.request_stop();
   }
@@ -179,6 +261,10 @@ class Monitor final : public platform::Task {
   double elapsed_s_ = 0.0, next_report_s_ = 10.0;
   std::vector<double> reach_s_;
   std::vector<bool> reached_;
+  std::vector<double> stopped_s_;
+  std::vector<int> stops_;
+  std::vector<bool> still_;
+  TimePoint last_{};
   std::string failure_;
 };
 
@@ -193,6 +279,8 @@ int run(int argc, char** argv) {
   double max_silence_s = 5.0;
   double time_scale = 1.0;
   bool quiet = false;
+  bool print_sensors = false;
+  std::string world_name = "ideal";
   app.add_option("--scenario", cfg.scenario, "sparse | dense")
       ->check(CLI::IsMember({"sparse", "dense", "pillars"}));
   app.add_option("--map", cfg.map_file, "a PCD map instead of a generated scenario");
@@ -214,9 +302,31 @@ int run(int argc, char** argv) {
   app.add_option("--time-scale", time_scale,
                  "simulated seconds per second (the robots need the same --time-scale)")
       ->check(CLI::Range(0.1, 20.0));
+  app.add_option("--world", world_name,
+                 "ideal (the paper's), field (what real sensors do), or a YAML world file "
+                 "(config/worlds/field.yaml); each robot's clock is the host's in SITL");
+  app.add_flag("--print-uav-sensors", print_sensors,
+               "print the uav.yaml sections describing the world's UAV LiDAR and camera, exit");
   app.add_flag("--quiet", quiet, "only errors");
+  app.footer(
+      "Exit codes: 0 the mission ran (its JSON says how it went); 1 DDS failed; 2 a usage or\n"
+      "input error; 3 a robot never appeared or went silent.");
   if (const auto code = sim::parse_command_line(app, argc, argv)) return *code;
   if (!cfg.map_file.empty()) cfg.scenario = "file";
+  if (std::string error; !mission::world_from_name(world_name, cfg.world, error)) {
+    std::fprintf(stderr, "colag_world: --world: %s\n", error.c_str());
+    return 2;
+  }
+  const sim::SimWorldConfig wc = mission::sim_world_config(cfg);
+  if (print_sensors) {
+    print_uav_sensors(wc);
+    return 0;
+  }
+  // Each process reads the host's clock: the world's sensor stamps must be on it too.
+  if (cfg.world.clocks.offset_s != 0.0 || cfg.world.clocks.drift_ppm != 0.0)
+    std::fprintf(stderr,
+                 "colag_world: warning: the world's clock offsets and drifts are not simulated in "
+                 "SITL (every robot reads this host's clock); colag_sim simulates them\n");
   if (!json_path.empty() && !std::ofstream(json_path)) {  // fail now, not after the mission
     std::fprintf(stderr, "colag_world: --json %s: cannot write there\n", json_path.c_str());
     return 2;
@@ -232,13 +342,11 @@ int run(int argc, char** argv) {
   for (const std::string& w : warnings)
     std::fprintf(stderr, "colag_world: warning: %s\n", w.c_str());
   platform::RealtimeExecutor exec(time_scale);
-  sim::SimWorldConfig wc;
-  wc.seed = cfg.seed;
-  wc.lidar.columns = cfg.lidar_columns;
   platform::WorkerPool pool(1);
   sim::SimWorld world(wc, boxes, exec.clock(), &pool);
+  std::vector<sim::WheelErrors> wheels = mission::draw_wheels(cfg);
   for (int i = 0; i < cfg.ugvs; ++i)
-    world.add_ugv(mission::ugv_start(i));
+    world.add_ugv(mission::ugv_start(i), {}, &wheels[static_cast<std::size_t>(i)]);
   world.add_uav(mission::uav_start());
 
   hal::sim::SimLink link;
@@ -253,7 +361,8 @@ int run(int argc, char** argv) {
   platform::dds::DdsConfig dds_cfg;
   dds_cfg.domain_id = domain;
   dds_cfg.publish_only<>();  // a listener only
-  RobotTraffic traffic(cfg.ugvs);
+  TruthHistory truth(cfg.ugvs);
+  RobotTraffic traffic(cfg.ugvs, truth);
   Status st = dds.init(dds_cfg);
   for (msg::Topic t : {msg::topic_of<msg::UgvStatus>, msg::topic_of<msg::MapPatch>,
                        msg::topic_of<msg::CollisionInfo>, msg::topic_of<msg::UavOdometry>})
@@ -264,7 +373,7 @@ int run(int argc, char** argv) {
     return 1;
   }
 
-  WorldStep world_step(world);
+  WorldStep world_step(world, truth);
   BridgeStep bridge_step(bridge);
   platform::TransportPump pump(dds);
   Monitor monitor(cfg, world, traffic, exec, start_timeout_s, max_silence_s, quiet);
@@ -278,9 +387,10 @@ int run(int argc, char** argv) {
     return 1;
   }
   if (!quiet)
-    std::printf("colag_world: %s, %d UGVs, seed %llu; robots on DDS domain %u, sim link on %u\n",
-                cfg.scenario.c_str(), cfg.ugvs, static_cast<unsigned long long>(cfg.seed), domain,
-                sim_domain);
+    std::printf(
+        "colag_world: %s, %d UGVs, seed %llu, %s world; robots on DDS domain %u, sim link on %u\n",
+        cfg.scenario.c_str(), cfg.ugvs, static_cast<unsigned long long>(cfg.seed),
+        cfg.world.name.c_str(), domain, sim_domain);
   std::fflush(stdout);
   const auto wall_start = std::chrono::steady_clock::now();
   exec.run_until(TimePoint::max());
@@ -303,6 +413,9 @@ int run(int argc, char** argv) {
     o.reached = monitor.reached_[k];
     o.reach_time_s = o.reached ? monitor.reach_s_[k] : -1.0;
     o.waiting_time_s = traffic.status[k].waiting_time_s;
+    o.stopped_s = monitor.stopped_s_[k];
+    o.stops = monitor.stops_[k];
+    std::tie(o.nees_mean, o.nees_samples) = traffic.nees[k];
     o.final_mode = traffic.status[k].mode;
     if (o.final_mode == msg::UgvMode::kBlocked) o.blocked_reason = traffic.status[k].blocked_reason;
     o.support_requests = traffic.requests[k];

@@ -227,6 +227,9 @@ camera:
   EXPECT_EQ(c.rpe.tags[0].tag_id, 5);
   EXPECT_EQ(c.rpe.tags[1].ugv_id, 2);
   EXPECT_NEAR(c.rpe.tags[0].tag_in_body.p.z(), 0.25, 1e-12);
+  // Its view: the cone inscribed in the calibrated image (720 px high, f = 900 px).
+  EXPECT_NEAR(c.camera_view.half_angle_deg, std::atan(360.0 / 900.0) * 180.0 / M_PI, 1e-9);
+  EXPECT_NEAR(c.camera_view.tag_height_m, 0.5 * (0.25 + 0.3), 1e-12);  // the tags' mean
   // The downward camera looks along the UAV's -z.
   EXPECT_NEAR((c.rpe.camera_in_uav.q * Vec3::UnitZ() - Vec3(0, 0, -1)).norm(), 0.0, 1e-12);
 
@@ -238,6 +241,42 @@ camera:
   EXPECT_FALSE(load_uav_config(
       write("u4.yaml", "camera: {calibration: cam.yaml, tags: [{tag: 700, ugv: 1}]}"), c, error));
   EXPECT_NE(error.find("camera.tags[0].tag: out of range"), std::string::npos) << error;
+}
+
+TEST_F(BoardConfig, UavConfigDescribesItsLidarAndCameraView) {
+  UavBoardConfig c;
+  std::string error;
+  // As colag_world --print-uav-sensors writes them for SITL.
+  ASSERT_TRUE(load_uav_config(write("uav_sensors.yaml", R"(
+robot: {id: 0, hal: sim}
+lidar: {beams: 32, lowest_elevation_deg: -25.2, elevation_step_deg: 1.2, columns: 1200}
+camera: {max_range_m: 5.0, fov_half_angle_deg: 75.0}
+)"),
+                              c, error))
+      << error;
+  EXPECT_EQ(c.lidar_pattern.beams, 32);
+  EXPECT_DOUBLE_EQ(c.lidar_pattern.lowest_elevation_deg, -25.2);
+  EXPECT_EQ(c.lidar_pattern.columns, 1200);
+  EXPECT_DOUBLE_EQ(c.camera_view.range_m, 5.0);
+  EXPECT_DOUBLE_EQ(c.camera_view.half_angle_deg, 75.0);
+  EXPECT_DOUBLE_EQ(c.camera_view.tag_height_m, 0.3);  // no tags: the default height
+
+  // Not described: nothing is inferred, the view is unknown (the altitude as configured).
+  ASSERT_TRUE(load_uav_config(write("uav_plain.yaml", "robot: {id: 0, hal: sim}"), c, error));
+  EXPECT_EQ(c.lidar_pattern.beams, 0);
+  EXPECT_GE(c.camera_view.half_angle_deg, 90.0);
+
+  EXPECT_FALSE(load_uav_config(
+      write("uav_l1.yaml", "robot: {id: 0, hal: sim}\nlidar: {lowest_elevation_deg: -15}"), c,
+      error));
+  EXPECT_NE(error.find("lidar.beams: required"), std::string::npos) << error;
+  EXPECT_FALSE(load_uav_config(
+      write("uav_l2.yaml", "robot: {id: 0, hal: sim}\nlidar: {beams: 16, colums: 900}"), c, error));
+  EXPECT_NE(error.find("lidar.colums: unknown key"), std::string::npos) << error;
+  EXPECT_FALSE(load_uav_config(
+      write("uav_c1.yaml", "robot: {id: 0, hal: sim}\ncamera: {fov_half_angle_deg: 200}"), c,
+      error));
+  EXPECT_NE(error.find("camera.fov_half_angle_deg: out of range"), std::string::npos) << error;
 }
 
 }  // namespace

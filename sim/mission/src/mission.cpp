@@ -11,6 +11,7 @@
 #include "colag/platform/loopback_transport.hpp"
 #include "colag/platform/monotonic_clock.hpp"
 #include "colag/platform/worker_pool.hpp"
+#include "colag/sim/mission/world_setup.hpp"
 #include "colag/sim/world/sim_world.hpp"
 #include "colag/uav/clock_server.hpp"
 #include "colag/uav/map_sharer.hpp"
@@ -78,10 +79,6 @@ class ReferenceFrameTask final : public platform::Task {
 };
 
 // What the firmware is told of its LiDAR: the simulated one's pattern.
-uav::LidarBeamPattern beam_pattern_of(const sim::LidarPattern& p) {
-  return {p.beams, p.lowest_elevation_deg, p.elevation_step_deg, p.columns};
-}
-
 class SelfPerceptionTask final : public platform::Task {
  public:
   SelfPerceptionTask(platform::Transport& t, sim::SimWorld& world, int id,
@@ -172,45 +169,6 @@ std::vector<sim::ClockModel> draw_clocks(const MissionConfig& cfg) {
   out[0].step_at_s = c.step_at_s;
   out[0].step_s = c.step_s;
   return out;
-}
-
-// Each UGV's wheels, drawn from the world profile (its own stream: the rest is unchanged).
-std::vector<sim::WheelErrors> draw_wheels(const MissionConfig& cfg) {
-  const sim::WheelProfile& w = cfg.world.wheels;
-  std::vector<sim::WheelErrors> out(static_cast<std::size_t>(cfg.ugvs));
-  Rng rng(cfg.seed * 0x2545F4914F6CDD1DULL + 0x3EE1);
-  for (sim::WheelErrors& e : out) {
-    e.left_scale = rng.uniform(-w.scale_spread, w.scale_spread);
-    e.right_scale = rng.uniform(-w.scale_spread, w.scale_spread);
-    e.yaw_rate_bias_radps = rng.uniform(-w.yaw_rate_bias_radps, w.yaw_rate_bias_radps);
-    e.slip_per_radps = w.slip_per_radps;
-    e.slip_per_mps2 = w.slip_per_mps2;
-  }
-  return out;
-}
-
-// The world profile's camera.
-sim::CameraConfig camera_of(const sim::CameraProfile& c) {
-  sim::CameraConfig out;
-  out.range_m = c.range_m;
-  out.fov_half_angle_rad =
-      c.fov_half_angle_deg >= 180.0 ? M_PI : c.fov_half_angle_deg * M_PI / 180.0;
-  out.sigma_position_m = c.sigma_position_m;
-  out.sigma_yaw_rad = c.sigma_yaw_rad;
-  out.true_sigma_scale = c.true_sigma_scale;
-  out.miss_probability = c.miss;
-  out.outlier_probability = c.outlier;
-  out.outlier_max_m = c.outlier_max_m;
-  out.outlier_max_rad = c.outlier_max_deg * M_PI / 180.0;
-  out.latency = seconds(c.latency_ms / 1e3);
-  out.jitter = seconds(c.jitter_ms / 1e3);
-  return out;
-}
-
-sim::UavOdometryErrors uav_odometry_of(const sim::UavOdometryProfile& o) {
-  constexpr double kDeg = M_PI / 180.0;
-  return {o.scale_error,   o.yaw_error_deg * kDeg, o.walk_m_per_sqrt_min / std::sqrt(60.0),
-          o.jumps_per_min, o.jump_max_m,           seconds(o.latency_ms / 1e3)};
 }
 
 // After the UGV lanes ran: their samples go onto the bus in lane order, as if the UGVs' tasks
@@ -353,15 +311,7 @@ std::unique_ptr<Mission> Mission::compose(const MissionConfig& cfg, std::string&
   p->ex = std::make_unique<platform::LockstepExecutor>(TimePoint{}, &p->stopwatch);
   p->bus = std::make_unique<platform::LoopbackTransport>(cfg.seed);
   p->clocks = draw_clocks(cfg);
-  sim::SimWorldConfig wc;
-  wc.seed = cfg.seed;
-  wc.lidar.columns = cfg.lidar_columns;
-  wc.ugv.encoder_bias = cfg.faults.odom_bias;
-  wc.camera = camera_of(cfg.world.camera);
-  wc.lidar_errors = {cfg.world.lidar.range_sigma_m, cfg.world.lidar.dropout,
-                     cfg.world.lidar.returns_only};
-  wc.uav.odometry = uav_odometry_of(cfg.world.uav_odometry);
-  wc.uav.seed = cfg.seed * 104729ULL + 3;
+  const sim::SimWorldConfig wc = sim_world_config(cfg);
   const std::vector<sim::WheelErrors> wheels = draw_wheels(cfg);
   p->pool = std::make_unique<platform::WorkerPool>(cfg.threads - 1);
   p->world = std::make_unique<sim::SimWorld>(wc, boxes, p->ex->clock(), p->pool.get());
@@ -380,8 +330,7 @@ std::unique_ptr<Mission> Mission::compose(const MissionConfig& cfg, std::string&
     if (cfg.ablation == Ablation::kNoTimeWindows)
       uc.scheduler.mode = uav::ScheduleMode::kNoTimeWindows;
     uc.lidar_pattern = beam_pattern_of(wc.lidar);
-    uc.camera_view = {wc.camera.range_m, wc.camera.fov_half_angle_rad * 180.0 / M_PI,
-                      wc.camera.tag_height_m};
+    uc.camera_view = camera_view_of(wc.camera);
     sim::SimWorld& w = *p->world;
     p->uav = std::make_unique<uav::UavSupervisorTask>(uc, *p->bus, w.uav(), w.uav_lidar(),
                                                       w.uav_camera(), w.uav(), p->pool.get());

@@ -42,6 +42,8 @@ bool UavBoard::start(std::string& error) {
   // The table: the transport first, then the task's loops, all from the UAV's schedule table.
   UavSupervisorConfig uc;
   uc.id = cfg.id;
+  uc.lidar_pattern = cfg.lidar_pattern;
+  uc.camera_view = cfg.camera_view;
   UavSupervisorTask& task = task_.emplace(uc, dds_, devices, devices, devices, devices, &pool_);
   pump_.emplace(dds_);
   Status st = executor_.add(platform::row(*pump_, uc.schedule.transport));

@@ -22,9 +22,10 @@ void read_uav_sections(board::Reader& r, const YAML::Node& doc, UavBoardConfig& 
   c.sim_hal = hal == "sim";
 
   const YAML::Node cam = child(doc, "camera");
-  r.only(cam, "camera",
-         {"device", "calibration", "latency_ms", "tag_size_m", "decimate", "threads",
-          "min_decision_margin", "max_range_m", "mount_xyz", "mount", "tags"});
+  r.only(
+      cam, "camera",
+      {"device", "calibration", "latency_ms", "tag_size_m", "decimate", "threads",
+       "min_decision_margin", "max_range_m", "fov_half_angle_deg", "mount_xyz", "mount", "tags"});
   r.get(cam, "camera", "device", c.camera.uri);
   r.get(cam, "camera", "calibration", c.calibration_file);
   r.millis(cam, "camera", "latency_ms", c.camera.latency, 0.0, 1000.0);
@@ -33,6 +34,11 @@ void read_uav_sections(board::Reader& r, const YAML::Node& doc, UavBoardConfig& 
   r.get(cam, "camera", "threads", c.rpe.threads, 1, 8);
   r.get(cam, "camera", "min_decision_margin", c.rpe.min_decision_margin, 0.0, 255.0);
   r.get(cam, "camera", "max_range_m", c.rpe.max_range_m, 0.1, 50.0);
+  // Its view, for the altitude: not set, the cone inscribed in the calibrated image of a
+  // downward camera; otherwise (no calibration: the simulated camera; a forward camera) 180: it
+  // is flown at the flight layer's altitude.
+  double fov = 0.0;
+  r.get(cam, "camera", "fov_half_angle_deg", fov, 1.0, 180.0);
   std::string mount = "downward";
   r.get(cam, "camera", "mount", mount);
   double xyz[3] = {0, 0, 0};
@@ -67,6 +73,24 @@ void read_uav_sections(board::Reader& r, const YAML::Node& doc, UavBoardConfig& 
         r.fail("camera.tags", "too many tags");
     }
   }
+  double tag_height = 0.0;  // the tags' mean height above the UGVs' origins
+  for (const auto& t : c.rpe.tags)
+    tag_height += t.tag_in_body.p.z() / static_cast<double>(c.rpe.tags.size());
+  c.camera_view = {c.rpe.max_range_m, fov,
+                   c.rpe.tags.empty() ? CameraView{}.tag_height_m : tag_height};
+
+  // The LiDAR's beams (a spinning LiDAR's pattern; not set: nothing is inferred of the beams
+  // without a return, and the UAV flies at the flight layer's altitude).
+  const YAML::Node lidar = child(doc, "lidar");
+  r.only(lidar, "lidar", {"beams", "lowest_elevation_deg", "elevation_step_deg", "columns"});
+  LidarBeamPattern& p = c.lidar_pattern;
+  p.beams = 0;
+  r.get(lidar, "lidar", "beams", p.beams, 1, static_cast<int>(limits::kMaxLidarBeams));
+  r.get(lidar, "lidar", "lowest_elevation_deg", p.lowest_elevation_deg, -90.0, 90.0);
+  r.get(lidar, "lidar", "elevation_step_deg", p.elevation_step_deg, 0.01, 30.0);
+  r.get(lidar, "lidar", "columns", p.columns, 1, static_cast<int>(limits::kMaxLidarColumns));
+  if (r.ok() && lidar && p.beams == 0) r.require(lidar, "lidar", "beams");
+
   // The simulated camera needs no calibration.
   if (r.ok() && c.calibration_file.empty() && !c.sim_hal)
     r.fail("camera.calibration", "required (an OpenCV calibration YAML)");
@@ -77,10 +101,17 @@ void read_uav_sections(board::Reader& r, const YAML::Node& doc, UavBoardConfig& 
       r.fail("camera.calibration", cal_error);
     c.calibration_file = file;
   }
+  if (r.ok() && fov == 0.0) {
+    const linux_hal::CameraIntrinsics& k = c.rpe.camera;
+    fov = c.calibration_file.empty() || mount != "downward" || !(k.fx > 0.0 && k.fy > 0.0)
+              ? 180.0
+              : std::atan(std::min(0.5 * k.width / k.fx, 0.5 * k.height / k.fy)) * 180.0 / M_PI;
+  }
+  c.camera_view.half_angle_deg = fov;
   r.require(robot, "robot", "id");  // checked last: a wrong value elsewhere is reported first
 }
 
-const board::ConfigSchema<UavBoardConfig> kSchema{{"robot", "camera"}, read_uav_sections};
+const board::ConfigSchema<UavBoardConfig> kSchema{{"robot", "camera", "lidar"}, read_uav_sections};
 }  // namespace
 
 bool load_uav_config(const std::string& path, UavBoardConfig& out, std::string& error) {

@@ -5,6 +5,8 @@
 
 #include "colag/board/config.hpp"
 #include "colag/hal/linux/camera_rpe.hpp"
+#include "colag/uav/camera_altitude.hpp"
+#include "colag/uav/no_return_beams.hpp"
 
 namespace colag::uav {
 
@@ -16,6 +18,11 @@ struct UavBoardConfig {
   linux_hal::TagPoseConfig rpe;
   linux_hal::CameraSource camera;
   std::string calibration_file;  // OpenCV calibration YAML, required
+  // What the supervisor is told of its sensors (see UavSupervisorConfig): the LiDAR's beam
+  // pattern (its beams without a return are free space; its lowest beam bounds the altitude)
+  // and the camera's view of the tags (where it flies to see most of them).
+  LidarBeamPattern lidar_pattern;
+  CameraView camera_view;
 };
 
 // False with `error` = "FILE: key.path: problem".
