@@ -144,6 +144,50 @@ TEST(Scheduler, WhenNoOrderMeetsEveryDeadlineTotalLatenessIsMinimised) {
   EXPECT_GT(edf->solve(p).cost.lateness_s, r.cost.lateness_s + 1.0);
 }
 
+TEST(Scheduler, AWeightedStopThatHasWaitedLongGoesFirst) {
+  // A near stop due soon (in time if served first) and a far one already late. By lateness
+  // alone the near one goes first (late 8 s at the far one vs 6 + 9 s the other way); once the
+  // far UGV's lateness weighs 5x (it has asked for 40 s), it goes first (40 vs 30 + 9).
+  ScheduleProblem p;
+  p.n = 2;
+  p.travel[0][1] = 2.0;
+  p.travel[0][2] = 6.0;
+  p.travel[1][2] = p.travel[2][1] = 6.0;
+  p.due = {1e18, 3.0, 0.0};
+  for (const int exact_max : {kExactMaxStops, 0}) {  // the exact solver and the heuristic
+    SchedulerConfig c;
+    c.exact_max_stops = exact_max;
+    auto scheduler = std::make_unique<Scheduler>(c);
+    const ScheduleResult& r = scheduler->solve(p);
+    ASSERT_EQ(r.order.size(), 2U);
+    EXPECT_EQ(r.order[0], 1);
+    EXPECT_NEAR(r.cost.lateness_s, 8.0, 1e-9);
+    p.weight[2] = 5.0;
+    const ScheduleResult& w = scheduler->solve(p);
+    ASSERT_EQ(w.order.size(), 2U);
+    EXPECT_EQ(w.order[0], 2) << "exact_max_stops " << exact_max;
+    EXPECT_NEAR(w.cost.lateness_s, 5.0 * 6.0 + 9.0, 1e-9);
+    EXPECT_NEAR(w.cost.max_lateness_s, 9.0, 1e-9);  // not weighted
+    p.weight[2] = 1.0;
+  }
+}
+
+TEST(Scheduler, ExactEqualsBruteForceWithWeightedLateness) {
+  Rng rng(77);
+  auto scheduler = std::make_unique<Scheduler>();
+  for (int trial = 0; trial < 300; ++trial) {
+    const int n = 1 + static_cast<int>(rng.below(8));
+    ScheduleProblem p = random_instance(rng, n, 0.0, 20.0);
+    for (int j = 1; j <= n; ++j)
+      p.weight[j] = rng.uniform(1.0, 6.0);
+    const ScheduleResult& r = scheduler->solve(p);
+    const RouteCost bf = brute_force(p);
+    ASSERT_TRUE(r.exact) << "trial " << trial;
+    EXPECT_NEAR(r.cost.lateness_s, bf.lateness_s, 1e-6) << "trial " << trial;
+    EXPECT_NEAR(r.cost.travel_s, bf.travel_s, 1e-6) << "trial " << trial;
+  }
+}
+
 TEST(Scheduler, AblationsBehaveAsNamed) {
   Rng rng(5);
   for (int trial = 0; trial < 50; ++trial) {

@@ -17,21 +17,21 @@ RouteCost evaluate(const ScheduleProblem& p, std::span<const std::uint8_t> order
   RouteCost c;
   double t = 0.0;
   std::uint8_t prev = 0;
-  const auto late = [&](double start, double due) {
-    const double l = std::max(0.0, start - due);
-    c.lateness_s += l;
+  const auto late = [&](double start, std::uint8_t k) {
+    const double l = std::max(0.0, start - p.due[k]);
+    c.lateness_s += p.weight[k] * l;
     c.max_lateness_s = std::max(c.max_lateness_s, l);
   };
   for (const std::uint8_t k : order) {
     c.travel_s += p.travel[prev][k];
     t = std::max(p.ready[k], t + p.travel[prev][k]);
-    late(t, p.due[k]);
+    late(t, k);
     if (arrival != nullptr) arrival[k] = t;
     prev = k;
   }
   if (p.closed) {
     c.travel_s += p.travel[prev][0];
-    late(t + p.travel[prev][0], p.due[0]);
+    late(t + p.travel[prev][0], 0);
   }
   c.feasible = c.lateness_s <= kEps;
   return c;
@@ -124,7 +124,7 @@ bool Scheduler::solve_exact(const ScheduleProblem& p, bool hard, const RouteCost
     double late = c.lateness, travel = c.travel;
     for (int j = 1; j <= n; ++j) {
       if (mask & (1U << (j - 1))) continue;
-      late += std::max(0.0, std::max(p.ready[j], c.arrival + min_in[j]) - p.due[j]);
+      late += p.weight[j] * std::max(0.0, std::max(p.ready[j], c.arrival + min_in[j]) - p.due[j]);
       travel += min_in[j];
     }
     if (late > bound->lateness_s + kEps) return true;
@@ -172,7 +172,7 @@ bool Scheduler::solve_exact(const ScheduleProblem& p, bool hard, const RouteCost
       const std::uint32_t prev_mask = mask ^ (1U << last);
       if (prev_mask == 0) {
         const double a = std::max(p.ready[node], p.travel[0][node]);
-        offer({std::max(0.0, a - p.due[node]), a, p.travel[0][node], kNone, node});
+        offer({p.weight[node] * std::max(0.0, a - p.due[node]), a, p.travel[0][node], kNone, node});
       } else {
         for (int prev = 0; prev < n; ++prev) {
           if ((prev_mask & (1U << prev)) == 0) continue;
@@ -182,7 +182,8 @@ bool Scheduler::solve_exact(const ScheduleProblem& p, bool hard, const RouteCost
           for (std::uint32_t i = state_begin_[ps]; i < state_begin_[ps] + state_count_[ps]; ++i) {
             const Label& l = pool_[i];
             const double a = std::max(p.ready[node], l.arrival + leg);
-            offer({l.lateness + std::max(0.0, a - p.due[node]), a, l.travel + leg, i, node});
+            offer({l.lateness + p.weight[node] * std::max(0.0, a - p.due[node]), a, l.travel + leg,
+                   i, node});
           }
         }
       }
@@ -206,7 +207,7 @@ bool Scheduler::solve_exact(const ScheduleProblem& p, bool hard, const RouteCost
       RouteCost c{l.lateness, l.travel, 0.0, true};
       if (p.closed) {
         const double home = p.travel[l.node][0];
-        const double late = std::max(0.0, l.arrival + home - p.due[0]);
+        const double late = p.weight[0] * std::max(0.0, l.arrival + home - p.due[0]);
         if (hard && late > kEps) continue;
         c.lateness_s += late;
         c.travel_s += home;

@@ -231,6 +231,7 @@ void UavSupervisorTask::read_requests(TimePoint now) {
       r.active = r.served = false;
       continue;
     }
+    if (!r.active) r.since = now;
     r.active = true;
     r.support = Vec2(ci.support_point_m[0], ci.support_point_m[1]);
     r.deadline = ci.stamp + seconds(ci.time_to_collision_s);
@@ -292,9 +293,11 @@ void UavSupervisorTask::solve(TimePoint now) {
       problem_.travel[i][0] = 0.0;  // open route
     }
     problem_.due[0] = 1e18;
+    const double aging_s = std::max(to_seconds(config_.lateness_aging), 1e-3);
     for (int j = 1; j <= problem_.n; ++j) {
-      problem_.due[j] =
-          to_seconds(requests_[stop_ugv_[static_cast<std::size_t>(j - 1)]].deadline - now);
+      const Request& r = requests_[stop_ugv_[static_cast<std::size_t>(j - 1)]];
+      problem_.due[j] = to_seconds(r.deadline - now);
+      problem_.weight[j] = 1.0 + std::max(0.0, to_seconds(now - r.since)) / aging_s;
     }
   };
   build(1.0);
@@ -421,6 +424,7 @@ void UavSupervisorTask::scheduling_step(TimePoint now) {
       // The UGV keeps asking although we are there: give the others a turn.
       Request& r = requests_[static_cast<std::size_t>(target_ugv_)];
       r.served = true;
+      r.since = now + config_.served_cooldown;  // we came: its age counts from its next turn
       r.served_at = r.support;
       r.served_until = now + config_.served_cooldown;
       ++health_.hover_timeouts;

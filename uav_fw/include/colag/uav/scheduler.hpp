@@ -2,7 +2,8 @@
 // The UAV's support scheduling (paper Sec. III-D) as an open vehicle-routing problem with time
 // windows for one vehicle: node 0 is the UAV, nodes 1..n the live support requests. A route
 // visits every stop once; arriving before `ready` means waiting, after `due` means lateness.
-// Objective, lexicographic: total lateness (sum of max(0, arrival - due)), then travel time.
+// Objective, lexicographic: total lateness (sum of max(0, arrival - due), each stop's weighted
+// by its `weight`, 1 unless set), then travel time.
 // So when some order meets every deadline, the shortest such order wins (the paper's VRPTW);
 // when none does, the order that makes the UGVs wait least in total (better than the paper's
 // "raise v_max until feasible", which says nothing about which UGV waits).
@@ -28,20 +29,32 @@ namespace colag::uav {
 inline constexpr std::size_t kMaxStops = limits::kMaxSupportRequests;
 inline constexpr int kExactMaxStops = 12;
 
+namespace detail {
+constexpr std::array<double, kMaxStops + 1> ones() {
+  std::array<double, kMaxStops + 1> a{};
+  for (double& x : a)
+    x = 1.0;
+  return a;
+}
+}  // namespace detail
+
 struct ScheduleProblem {
   int n = 0;                                                              // stops 1..n
   std::array<std::array<double, kMaxStops + 1>, kMaxStops + 1> travel{};  // seconds, i -> j
   std::array<double, kMaxStops + 1> ready{};
   std::array<double, kMaxStops + 1> due{};
+  // What a second of lateness at each stop costs (> 0): the UAV weighs a UGV that has already
+  // waited long more, so that a far one is not left for ever behind nearer, newer requests.
+  std::array<double, kMaxStops + 1> weight = detail::ones();
   bool closed = false;  // the route ends back at node 0 (TSPTW benchmark instances)
 };
 
 enum class ScheduleMode : std::uint8_t { kTimeWindows, kNoTimeWindows, kNoScheduling };
 
 struct RouteCost {
-  double lateness_s = 0.0;
+  double lateness_s = 0.0;  // weighted
   double travel_s = 0.0;
-  double max_lateness_s = 0.0;
+  double max_lateness_s = 0.0;  // not weighted
   bool feasible = true;
 };
 

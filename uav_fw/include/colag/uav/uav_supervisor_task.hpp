@@ -63,6 +63,10 @@ struct UavSupervisorConfig {
   double orbit_speed_mps = 1.5;
   double lead_m = 3.0;  // idle: fly this far ahead of the UGV, towards its goal
   Duration hover_timeout = std::chrono::seconds(10);
+  // A second of lateness at a UGV that has asked for this long costs 1 + age / lateness_aging:
+  // with lateness alone, a far UGV already late is served last whenever a nearer one asks in
+  // time, for ever (a corner UGV in an 8-UGV field stood 105 s while the UAV served others).
+  Duration lateness_aging = std::chrono::seconds(10);
   double served_moved_m = 1.0;  // a timed-out request returns when its point moves this much
   Duration served_cooldown = std::chrono::seconds(20);  // ... or after this long
   Duration request_timeout = std::chrono::seconds(5);   // UGVs heartbeat every second
@@ -133,6 +137,7 @@ class UavSupervisorTask {
   using Loop = platform::MemberLoop<UavSupervisorTask>;
   struct Request {
     bool active = false;
+    TimePoint since{};    // asking since (or since we last hovered there): its age weighs it
     bool served = false;  // hovered there until the timeout: skip for a while
     TimePoint served_until{};
     std::uint32_t seq = 0;
