@@ -52,8 +52,9 @@ class MiniWorld final : public platform::Task {
     msg::RelativePose rpe;
     rpe.stamp = now;
     rpe.ugv_id = 0;
-    rpe.position_m[0] = truth.p.x() - uav_.x() + rng_.gaussian(0, 0.2);
-    rpe.position_m[1] = truth.p.y() - uav_.y() + rng_.gaussian(0, 0.2);
+    rpe.position_m[0] = truth.p.x() - uav_.x() + rng_.gaussian(0, 0.2) + next_rpe_error.x();
+    rpe.position_m[1] = truth.p.y() - uav_.y() + rng_.gaussian(0, 0.2) + next_rpe_error.y();
+    next_rpe_error = Vec2::Zero();
     rpe.position_m[2] = -uav_.z();
     const Quat q = quat_from_yaw(truth.yaw_rad + rng_.gaussian(0, 0.05));
     rpe.orientation_wxyz[0] = q.w();
@@ -65,6 +66,7 @@ class MiniWorld final : public platform::Task {
 
   bool odometry_on = true;
   bool rpe_on = true;
+  Vec2 next_rpe_error = Vec2::Zero();  // an outlier: added to the next relative pose only
   double travelled = 0.0;
   Pose2 truth;
 
@@ -102,9 +104,11 @@ class OverrunReporter final : public platform::Task {
 };
 
 struct Rig {
-  explicit Rig(const Vec2& goal, const Vec3& uav = Vec3(2, 0, 2), bool report_overruns = false) {
+  explicit Rig(const Vec2& goal, const Vec3& uav = Vec3(2, 0, 2), bool report_overruns = false,
+               bool init_needs_agreement = true) {
     config.id = 0;
     config.goal = goal;
+    config.init_needs_agreement = init_needs_agreement;
     bus = std::make_unique<platform::LoopbackTransport>(1);
     world = std::make_unique<MiniWorld>(*bus, odo, drive, Pose2{Vec2(0, 0), 0.0}, uav);
     ugv = std::make_unique<UgvNavTask>(config, *bus, odo, drive);
@@ -168,7 +172,7 @@ TEST(UgvNavTask, DrivesToTheGoalThroughAKnownFreeMap) {
   Rig rig(Vec2(4.0, 2.0));
   rig.publish_map(-3.2, -3.2, 9.6, 6.4);
   rig.ex.run_until(TimePoint{200ms});
-  EXPECT_EQ(rig.ugv->mode(), msg::UgvMode::kDriving);  // initialised by the first RPE
+  EXPECT_EQ(rig.ugv->mode(), msg::UgvMode::kDriving);  // initialised by the first two RPEs
   ASSERT_TRUE(rig.run_until([&] { return rig.ugv->mode() == msg::UgvMode::kArrived; }, 40s))
       << "mode " << static_cast<int>(rig.ugv->mode());
   EXPECT_LT((rig.world->truth.p - Vec2(4.0, 2.0)).norm(), 0.35);
@@ -303,6 +307,27 @@ TEST(UgvNavTask, RejectsAndCountsBadMessagesWithoutHarm) {
   EXPECT_EQ(rig.ugv->health().patches_rejected, 1u);
   EXPECT_EQ(rig.ugv->health().statuses_rejected, 2u);
   ASSERT_TRUE(rig.run_until([&] { return rig.ugv->mode() == msg::UgvMode::kArrived; }, 30s));
+}
+
+// A camera outlier (1.8 m off, 6 sigma) as the very first relative pose: taken as the start, the
+// estimator believed it within its reported 0.2 m; now it waits for two that agree.
+TEST(UgvNavTask, AnOutlierCannotStartTheEstimator) {
+  for (const bool agreement : {true, false}) {
+    Rig rig(Vec2(4.0, 0.0), Vec3(2, 0, 2), false, agreement);
+    rig.world->rpe_on = false;  // relative poses are refused until fleet time is known
+    ASSERT_TRUE(
+        rig.run_until([&] { return rig.ugv->fleet_clock().synchronised(rig.ex.now()); }, 2s));
+    rig.world->rpe_on = true;
+    rig.world->next_rpe_error = Vec2(1.5, 1.0);
+    ASSERT_TRUE(rig.run_until([&] { return rig.ugv->estimator().initialized(); }, 2s));
+    const double error = (rig.ugv->estimator().pose().p - rig.world->truth.p).norm();
+    if (agreement) {
+      EXPECT_LT(error, 0.4);
+      EXPECT_EQ(rig.ugv->health().rpe_init_disagreed, 1U);
+    } else {
+      EXPECT_GT(error, 1.2);  // what it did: started on the outlier
+    }
+  }
 }
 
 // One UAV odometry sample stamped an hour ahead used to become the history's newest: every

@@ -8,6 +8,7 @@
 // step(); every malformed input is rejected and counted in health().
 #include <array>
 #include <cstdint>
+#include <optional>
 
 #include "colag/common/overrun_governor.hpp"
 #include "colag/common/stamp_gate.hpp"
@@ -25,11 +26,12 @@ namespace colag::ugv {
 struct UgvHealth {
   std::uint64_t odometry_rejected = 0;
   std::uint64_t uav_odometry_rejected = 0;
-  std::uint64_t rpe_rejected = 0;    // malformed, wrong robot, too old / from the future
-  std::uint64_t rpe_unmatched = 0;   // no UAV odometry within the tolerance of its stamp
-  std::uint64_t rpe_outliers = 0;    // outside the EKF gate
-  std::uint64_t rpe_ignored = 0;     // ablation no-rpe: used only to initialise
-  std::uint64_t unsynchronised = 0;  // UAV odometry / relative poses refused: no fleet time yet
+  std::uint64_t rpe_rejected = 0;        // malformed, wrong robot, too old / from the future
+  std::uint64_t rpe_unmatched = 0;       // no UAV odometry within the tolerance of its stamp
+  std::uint64_t rpe_outliers = 0;        // outside the EKF gate
+  std::uint64_t rpe_init_disagreed = 0;  // before initialisation: unlike the one before it
+  std::uint64_t rpe_ignored = 0;         // ablation no-rpe: used only to initialise
+  std::uint64_t unsynchronised = 0;      // UAV odometry / relative poses refused: no fleet time yet
   std::uint64_t patches_rejected = 0;
   std::uint64_t statuses_rejected = 0;
   std::uint64_t drive_errors = 0;
@@ -114,6 +116,8 @@ class UgvNavTask {
   void sum_stamp_counters();
   msg::BlockedReason standing_reason() const;
   bool sure_of_position() const;  // 3 sigma within arrival_max_uncertainty_m: may arrive
+  // Two relative poses before initialisation agree (see UgvNavConfig::init_needs_agreement).
+  bool agrees_with_init_candidate(const PoseMeasurement& z) const;
   void command(TimePoint now, double v, double omega);
 
   UgvNavConfig config_;
@@ -135,6 +139,7 @@ class UgvNavTask {
 
   FleetClock fleet_;
   UgvEkf ekf_;
+  std::optional<PoseMeasurement> init_candidate_;  // the first of two to start the estimator
   UavOdometryHistory uav_history_;
   MapStore map_;
   Planner planner_;
