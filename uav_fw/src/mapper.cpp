@@ -78,6 +78,10 @@ bool Mapper::trace(const Vec3& a, const Vec3& b, VoxelLayer stop, bool first_is_
   std::int8_t* const logodds = logodds_.data();
   std::uint64_t* const touched = bits.touched.data();
   const int lo = min_, hi = max_, miss = weak ? weak_miss_ : miss_;
+  // An inferred miss may be a return lost on this very surface: it never lowers a voxel that is
+  // occupied now (a lost return cannot open a hole in a mapped obstacle). The rest of its way,
+  // in front of and behind that voxel, is treated as before.
+  const int keep_from = weak ? occupied_ : 128;
   const int stop_unchanged = config_.early_stop_voxels;
   const int stop_crossed = config_.early_stop_crossed;
   int unchanged = runs.unchanged, crossed = runs.crossed;
@@ -91,7 +95,7 @@ bool Mapper::trace(const Vec3& a, const Vec3& b, VoxelLayer stop, bool first_is_
     const bool seen = test_bit(touched, i);
     if (first_is_end) {
       first_is_end = false;
-      if (!seen) apply(i, hit ? hit_ : miss);  // a hit was applied already
+      if (!seen && (hit || logodds[i] < keep_from)) apply(i, hit ? hit_ : miss);  // hits: applied
       return false;
     }
     if (seen) {
@@ -99,6 +103,7 @@ bool Mapper::trace(const Vec3& a, const Vec3& b, VoxelLayer stop, bool first_is_
       return ++unchanged >= stop_unchanged || crossed >= stop_crossed;
     }
     crossed = 0;
+    if (logodds[i] >= keep_from) return ++unchanged >= stop_unchanged;
     if (apply(i, miss)) {
       unchanged = 0;
       return false;
