@@ -176,6 +176,7 @@ void UgvNavTask::read_relative_poses(TimePoint now) {
       }
       (void)ekf_.update(*init_candidate_);  // starts it; the second is fused next
       init_candidate_.reset();
+      replan_requested_ = true;
     }
     switch (ekf_.update(z.value())) {
       case UgvEkf::Update::kInitialized:
