@@ -28,10 +28,10 @@
 #include "colag/sim/bridge/world_bridge.hpp"
 #include "colag/sim/host_program.hpp"
 #include "colag/sim/mission/mission.hpp"
+#include "colag/sim/mission/truth_metrics.hpp"
 #include "colag/sim/mission/world_file.hpp"
 #include "colag/sim/mission/world_setup.hpp"
 #include "colag/sim/world/sim_world.hpp"
-#include "colag/ugv/waiting.hpp"
 
 using namespace colag;
 using namespace std::chrono_literals;
@@ -146,12 +146,9 @@ struct RobotTraffic final : platform::SampleSink {
     const std::optional<Pose2> truth = truth_.at(s.ugv_id, s.stamp);
     const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> cov(s.covariance);
     if (!truth || !(cov.determinant() > 0.0)) return;
-    const Vec3 e(s.position_m[0] - truth->p.x(), s.position_m[1] - truth->p.y(),
-                 wrap_angle(s.yaw_rad - truth->yaw_rad));
-    const double v = e.dot(Mat3(cov).ldlt().solve(e));
-    if (!std::isfinite(v)) return;
+    const Pose2 estimate{Vec2(s.position_m[0], s.position_m[1]), s.yaw_rad};
     auto& [mean, n] = nees[s.ugv_id];
-    mean += (v - mean) / static_cast<double>(++n);
+    mission::add_to_mean(mission::pose_nees(estimate, Mat3(cov), *truth), mean, n);
   }
   std::vector<msg::UgvStatus> status;
   std::vector<TimePoint> heard;                        // TimePoint{} = never
@@ -179,9 +176,7 @@ class Monitor final : public platform::Task {
         quiet_(quiet),
         reach_s_(static_cast<std::size_t>(cfg.ugvs), -1.0),
         reached_(reach_s_.size(), false),
-        stopped_s_(reach_s_.size(), 0.0),
-        stops_(reach_s_.size(), 0),
-        still_(reach_s_.size(), false) {}
+        still_(reach_s_.size()) {}
   const char* name() const override { return "monitor"; }
   void step(TimePoint now) override {
     if (created_ == TimePoint{}) created_ = now;
@@ -211,11 +206,7 @@ class Monitor final : public platform::Task {
         return;
       }
       const bool arrived = traffic_.status[k].mode == msg::UgvMode::kArrived;
-      // Waiting as a user sees it: standing still (by the true motion) before it arrived.
-      const bool still = !arrived && std::abs(world_.ugv(i).speed_mps()) < ugv::kStillSpeed_mps;
-      if (still) stopped_s_[k] += to_seconds(now - last_);
-      if (still && !still_[k]) ++stops_[k];
-      still_[k] = still;
+      still_[k].update(arrived, world_.ugv(i).speed_mps(), to_seconds(now - last_));
       if (arrived && reach_s_[k] < 0.0) {
         reach_s_[k] = t;
         reached_[k] =
@@ -261,9 +252,7 @@ class Monitor final : public platform::Task {
   double elapsed_s_ = 0.0, next_report_s_ = 10.0;
   std::vector<double> reach_s_;
   std::vector<bool> reached_;
-  std::vector<double> stopped_s_;
-  std::vector<int> stops_;
-  std::vector<bool> still_;
+  std::vector<mission::StillCount> still_;  // waiting as a user sees it (truth_metrics.hpp)
   TimePoint last_{};
   std::string failure_;
 };
@@ -413,8 +402,8 @@ int run(int argc, char** argv) {
     o.reached = monitor.reached_[k];
     o.reach_time_s = o.reached ? monitor.reach_s_[k] : -1.0;
     o.waiting_time_s = traffic.status[k].waiting_time_s;
-    o.stopped_s = monitor.stopped_s_[k];
-    o.stops = monitor.stops_[k];
+    o.stopped_s = monitor.still_[k].stopped_s;
+    o.stops = monitor.still_[k].stops;
     std::tie(o.nees_mean, o.nees_samples) = traffic.nees[k];
     o.final_mode = traffic.status[k].mode;
     if (o.final_mode == msg::UgvMode::kBlocked) o.blocked_reason = traffic.status[k].blocked_reason;

@@ -81,7 +81,7 @@ bool Mapper::trace(const Vec3& a, const Vec3& b, VoxelLayer stop, bool first_is_
   // An inferred miss may be a return lost on this very surface: it never lowers a voxel that is
   // occupied now (a lost return cannot open a hole in a mapped obstacle). The rest of its way,
   // in front of and behind that voxel, is treated as before.
-  const int keep_from = weak ? occupied_ : 128;
+  const int keep_from = weak ? occupied_ : 128;  // 128: above every int8, nothing is kept
   const int stop_unchanged = config_.early_stop_voxels;
   const int stop_crossed = config_.early_stop_crossed;
   int unchanged = runs.unchanged, crossed = runs.crossed;

@@ -11,6 +11,7 @@
 #include "colag/platform/loopback_transport.hpp"
 #include "colag/platform/monotonic_clock.hpp"
 #include "colag/platform/worker_pool.hpp"
+#include "colag/sim/mission/truth_metrics.hpp"
 #include "colag/sim/mission/world_setup.hpp"
 #include "colag/sim/world/sim_world.hpp"
 #include "colag/uav/clock_server.hpp"
@@ -78,7 +79,6 @@ class ReferenceFrameTask final : public platform::Task {
   uav::ClockServer clock_;
 };
 
-// What the firmware is told of its LiDAR: the simulated one's pattern.
 class SelfPerceptionTask final : public platform::Task {
  public:
   SelfPerceptionTask(platform::Transport& t, sim::SimWorld& world, int id,
@@ -236,29 +236,19 @@ struct UgvStack {
 class StillWatch final : public platform::Task {
  public:
   StillWatch(const sim::SimWorld& world, const std::vector<UgvStack>& ugvs)
-      : stopped_s(ugvs.size(), 0.0),
-        stops(ugvs.size(), 0),
-        world_(world),
-        ugvs_(ugvs),
-        still_(ugvs.size(), false) {}
+      : counts(ugvs.size()), world_(world), ugvs_(ugvs) {}
   const char* name() const override { return "still_watch"; }
   void step(TimePoint) override {
     for (std::size_t i = 0; i < ugvs_.size(); ++i) {
-      const bool arrived = ugvs_[i].task->mode() == msg::UgvMode::kArrived;
-      const bool still =
-          !arrived && std::abs(world_.ugv(static_cast<int>(i)).speed_mps()) < ugv::kStillSpeed_mps;
-      if (still) stopped_s[i] += 0.02;
-      if (still && !still_[i]) ++stops[i];
-      still_[i] = still;
+      counts[i].update(ugvs_[i].task->mode() == msg::UgvMode::kArrived,
+                       world_.ugv(static_cast<int>(i)).speed_mps(), 0.02);
     }
   }
-  std::vector<double> stopped_s;
-  std::vector<int> stops;
+  std::vector<StillCount> counts;
 
  private:
   const sim::SimWorld& world_;
   const std::vector<UgvStack>& ugvs_;
-  std::vector<bool> still_;
 };
 
 }  // namespace
@@ -457,21 +447,14 @@ void Mission::fly(MissionTrace* trace) {
       const sim::UgvBody& body = p.world->ugv(static_cast<int>(i));
       // Waiting as a user sees it: standing still (by the true motion) before it reached.
       const Pose2 now_pose = body.pose();
-      o.stopped_s = p.still->stopped_s[i];
-      o.stops = p.still->stops[i];
+      o.stopped_s = p.still->counts[i].stopped_s;
+      o.stops = p.still->counts[i].stops;
       // How honest its covariance is: NEES of (x, y, yaw) against the truth.
       const UgvEkf& ekf = task.estimator();
       // Its estimate is in the UAV odometry's frame: so is the truth it is held against.
       if (ekf.initialized() && task.mode() != msg::UgvMode::kArrived && !body.frozen()) {
         const Pose2 truth = p.world->odometry_frame().to_odometry(now_pose);
-        Vec3 e;
-        e.head<2>() = ekf.pose().p - truth.p;
-        e.z() = wrap_angle(ekf.pose().yaw_rad - truth.yaw_rad);
-        const double nees = e.dot(ekf.covariance().ldlt().solve(e));
-        if (std::isfinite(nees)) {
-          ++o.nees_samples;
-          o.nees_mean += (nees - o.nees_mean) / static_cast<double>(o.nees_samples);
-        }
+        add_to_mean(pose_nees(ekf.pose(), ekf.covariance(), truth), o.nees_mean, o.nees_samples);
         for (std::size_t k = 0; k < o.calibration.size(); ++k) {
           const int s = kPoseDim + static_cast<int>(k);
           o.calibration[k] = ekf.state()(s);

@@ -73,12 +73,6 @@ void read_uav_sections(board::Reader& r, const YAML::Node& doc, UavBoardConfig& 
         r.fail("camera.tags", "too many tags");
     }
   }
-  double tag_height = 0.0;  // the tags' mean height above the UGVs' origins
-  for (const auto& t : c.rpe.tags)
-    tag_height += t.tag_in_body.p.z() / static_cast<double>(c.rpe.tags.size());
-  c.camera_view = {c.rpe.max_range_m, fov,
-                   c.rpe.tags.empty() ? CameraView{}.tag_height_m : tag_height};
-
   // The LiDAR's beams (a spinning LiDAR's pattern; not set: nothing is inferred of the beams
   // without a return, and the UAV flies at the flight layer's altitude).
   const YAML::Node lidar = child(doc, "lidar");
@@ -107,7 +101,13 @@ void read_uav_sections(board::Reader& r, const YAML::Node& doc, UavBoardConfig& 
               ? 180.0
               : std::atan(std::min(0.5 * k.width / k.fx, 0.5 * k.height / k.fy)) * 180.0 / M_PI;
   }
-  c.camera_view.half_angle_deg = fov;
+  double tag_height = CameraView{}.tag_height_m;  // the tags' mean height above the UGVs' origins
+  if (!c.rpe.tags.empty()) {
+    tag_height = 0.0;
+    for (const auto& t : c.rpe.tags)
+      tag_height += t.tag_in_body.p.z() / static_cast<double>(c.rpe.tags.size());
+  }
+  c.camera_view = {c.rpe.max_range_m, fov, tag_height};
   r.require(robot, "robot", "id");  // checked last: a wrong value elsewhere is reported first
 }
 

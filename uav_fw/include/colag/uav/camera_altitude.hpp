@@ -24,9 +24,9 @@ inline double camera_altitude(const CameraView& v, double lowest, double highest
 }
 
 // The highest a LiDAR whose lowest beam points `lowest_elevation_deg` (negative: down; see
-// blind_cone_elevation_deg) may fly
-// and still map the ground band from `band_low_m` up out to `blind_radius_m` around the point
-// under it: its blind disc at that height is (h - band_low) / tan(-lowest). A LiDAR that cannot
+// blind_cone_elevation_deg) may fly and still map the ground band from `band_low_m` up out to
+// `blind_radius_m` around the point under it: its blind disc at that height is
+// (h - band_low) / tan(-lowest). A LiDAR that cannot
 // look down, or one not described (NaN), gives nothing above `lowest`; one looking straight
 // down is limited by `highest` alone.
 inline double lidar_altitude_limit(double lowest_elevation_deg, double band_low_m,
