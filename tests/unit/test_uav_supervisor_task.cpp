@@ -367,3 +367,21 @@ TEST(UavSupervisorTask, FliesAsHighAsItsCameraWantsAndItsLidarAllows) {
   EXPECT_NEAR(altitude(-40.0, 32), 2.3, 1e-9);  // a steeper one: where the camera sees most
   EXPECT_EQ(altitude(-25.2, 0), configured);    // a LiDAR not described: as configured
 }
+
+TEST(UavSupervisorTask, AFlightControllerThatLeavesTheMissionIsNoLongerCommandedAndSaysWhy) {
+  Rig rig;
+  Collect<msg::UavOdometry> odometry;
+  ASSERT_TRUE(rig.bus->subscribe(msg::topic_of<msg::UavOdometry>, kAnyRobot, odometry));
+  rig.ex.run_until(TimePoint{1s});
+  ASSERT_FALSE(odometry.got.empty());
+  EXPECT_EQ(odometry.got.back().flight, msg::UavFlight::kInControl);
+  const std::size_t sent = rig.fc.count();
+  ASSERT_GT(sent, 0u);
+  rig.fc.set_status({msg::UavFlight::kLost, msg::FlightFault::kFailsafe});
+  rig.ex.run_until(rig.ex.now() + 1s);
+  EXPECT_EQ(odometry.got.back().flight, msg::UavFlight::kLost);
+  EXPECT_EQ(odometry.got.back().fault, msg::FlightFault::kFailsafe);
+  EXPECT_LE(rig.fc.count(), sent + 1);  // at most the setpoint of the tick it changed in
+  EXPECT_EQ(rig.uav->health().flight_lost, 1u);
+  EXPECT_EQ(rig.uav->flight_status().fault, msg::FlightFault::kFailsafe);
+}

@@ -47,6 +47,7 @@ class MiniWorld final : public platform::Task {
     od.position_m[0] = uav_.x();
     od.position_m[1] = uav_.y();
     od.position_m[2] = uav_.z();
+    od.flight = flight;
     (void)bus_.publish(od);
     if (!rpe_on || (truth.p - uav_.head<2>()).norm() > 5.0) return;
     msg::RelativePose rpe;
@@ -66,6 +67,7 @@ class MiniWorld final : public platform::Task {
 
   bool odometry_on = true;
   bool rpe_on = true;
+  msg::UavFlight flight = msg::UavFlight::kInControl;  // what the UAV says of its flight
   Vec2 next_rpe_error = Vec2::Zero();  // an outlier: added to the next relative pose only
   double travelled = 0.0;
   Pose2 truth;
@@ -272,6 +274,26 @@ TEST(UgvNavTask, WheelOdometryLossStopsTheRobotAndReportsAFault) {
   rig.world->odometry_on = true;
   rig.ex.run_until(rig.ex.now() + 200ms);
   EXPECT_EQ(rig.ugv->mode(), msg::UgvMode::kDriving);
+}
+
+TEST(UgvNavTask, AUavWhoseFlightControllerLeftTheMissionStopsItUntilItFliesAgain) {
+  Rig rig(Vec2(6.0, 0.0));
+  rig.publish_map(-3.2, -3.2, 9.6, 3.2);
+  rig.ex.run_until(TimePoint{3s});
+  ASSERT_GT(rig.drive.last().v_mps, 0.1);
+  rig.world->flight = msg::UavFlight::kLost;
+  // The UAV's next sample (25 Hz here) + one control period: far inside the 1 s asked for.
+  rig.ex.run_until(rig.ex.now() + 100ms);
+  EXPECT_EQ(rig.ugv->mode(), msg::UgvMode::kUavUnavailable);
+  EXPECT_EQ(rig.drive.last().v_mps, 0.0);
+  EXPECT_EQ(rig.drive.last().omega_radps, 0.0);
+  rig.ex.run_until(rig.ex.now() + 2s);  // it stays stopped while the UAV says so
+  EXPECT_EQ(rig.ugv->mode(), msg::UgvMode::kUavUnavailable);
+  EXPECT_EQ(rig.drive.last().v_mps, 0.0);
+  EXPECT_EQ(rig.ugv->health().uav_unavailable, 1u);
+  rig.world->flight = msg::UavFlight::kInControl;
+  ASSERT_TRUE(rig.run_until([&] { return rig.ugv->mode() == msg::UgvMode::kArrived; }, 40s))
+      << "mode " << static_cast<int>(rig.ugv->mode());
 }
 
 TEST(UgvNavTask, RejectsAndCountsBadMessagesWithoutHarm) {

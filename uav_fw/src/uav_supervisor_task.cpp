@@ -97,6 +97,10 @@ void UavSupervisorTask::control_step(TimePoint now) {
   const double dt = std::clamp(to_seconds(now - last_control_), 1e-3, 0.1);
   last_control_ = now;
   clock_server_.step(now);
+  const hal::FlightStatus flight = flight_out_.update(now);
+  if (flight.state == msg::UavFlight::kLost && flight_status_.state != msg::UavFlight::kLost)
+    ++health_.flight_lost;
+  flight_status_ = flight;
   hal::UavState s;
   while (odometry_.poll(s)) {
     if (!all_finite(s.pose.p) || !s.pose.q.coeffs().allFinite() || !all_finite(s.velocity_mps) ||
@@ -119,6 +123,8 @@ void UavSupervisorTask::control_step(TimePoint now) {
     od.orientation_wxyz[2] = q.y();
     od.orientation_wxyz[3] = q.z();
     od.yaw_rate_radps = s.yaw_rate_radps;
+    od.flight = flight.state;  // every UGV stops while the flight controller is not ours
+    od.fault = flight.fault;
     (void)transport_.publish(od);
   }
   std::array<hal::RelativePoseDetection, limits::kMaxRpeDetectionsPerFrame> detections;
@@ -132,7 +138,11 @@ void UavSupervisorTask::control_step(TimePoint now) {
     if (transport_.publish(m.value())) ++health_.rpe_published;
     ugvs_[detections[i].ugv_id].last_seen = detections[i].stamp;
   }
-  if (!have_state_) return;
+  // Lost or landing: the flight controller flies on its own; commanding it would fight a pilot
+  // or its failsafe action.
+  const bool commanding =
+      flight.state == msg::UavFlight::kInControl || flight.state == msg::UavFlight::kStarting;
+  if (!have_state_ || !commanding) return;
   const hal::UavState here = predict_state(state_, now, config_.max_odometry_prediction);
   if (!flight_out_.send_setpoint(flight_.step(here, now, dt, flight_layer_)))
     ++health_.setpoint_errors;

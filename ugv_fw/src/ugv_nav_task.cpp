@@ -124,6 +124,10 @@ void UgvNavTask::read_relative_poses(TimePoint now) {
   const bool synchronised = fleet_.synchronised(now);
   msg::UavOdometry od;
   while (uav_odometry_in_.pop(od)) {
+    // Whether the UAV flies the mission needs no clock: it is read from every sample.
+    if (od.flight != uav_flight_ && od.flight != msg::UavFlight::kInControl)
+      ++health_.uav_unavailable;
+    uav_flight_ = od.flight;
     if (!synchronised) {
       ++health_.unsynchronised;
       continue;
@@ -219,6 +223,10 @@ void UgvNavTask::drive(TimePoint now, double dt) {
   if (awaiting_fix_ && sure_of_position()) awaiting_fix_ = false;
   if (fault_) {
     mode_ = msg::UgvMode::kFault;
+  } else if (uav_flight_ != msg::UavFlight::kInControl && ekf_.initialized() && !arrived_) {
+    // Its flight controller failed safe, was taken over or lands: no support is coming and the
+    // UAV itself may come down anywhere.
+    mode_ = msg::UgvMode::kUavUnavailable;
   } else if (blocked_.blocked()) {
     mode_ = msg::UgvMode::kBlocked;
   } else if (!ekf_.initialized()) {

@@ -28,6 +28,8 @@ const char* doing(msg::UgvMode m) {
       return "blocked";
     case msg::UgvMode::kWaitingForRobot:
       return "waiting for another UGV";
+    case msg::UgvMode::kUavUnavailable:
+      return "stopped: the UAV's flight controller left the mission";
   }
   return "in an unknown mode";
 }

@@ -17,10 +17,11 @@ enum class UgvMode : std::uint8_t {
   kFault = 5,    // sensor or actuator failure: motors commanded to zero
   kBlocked = 6,  // stood still too long for `blocked_reason`: stopped asking for support, retries
   kWaitingForRobot = 7,  // stopped: another UGV predicted closer than the robot stop time
+  kUavUnavailable = 8,   // stopped: the UAV says its flight controller does not fly the mission
 };
 template <>
 struct EnumRange<UgvMode> {
-  static constexpr UgvMode kLast = UgvMode::kWaitingForRobot;
+  static constexpr UgvMode kLast = UgvMode::kUavUnavailable;
 };
 
 // Why a UGV stands still (what it reports with kBlocked).

@@ -96,7 +96,8 @@ struct UavHealth {
   std::uint64_t schedules = 0;
   std::uint64_t schedules_exact = 0;
   std::uint64_t hover_timeouts = 0;
-  StampCounters stamps;  // every input stream's stamp checks, summed (scheduling loop)
+  std::uint64_t flight_lost = 0;  // times the flight controller left the mission
+  StampCounters stamps;           // every input stream's stamp checks, summed (scheduling loop)
 };
 
 class UavSupervisorTask {
@@ -130,6 +131,8 @@ class UavSupervisorTask {
   UavMode mode() const { return mode_; }
   const FlightPlanner& flight() const { return flight_; }
   const UavHealth& health() const { return health_; }
+  // The flight controller's last word (UavFlight::kLost: the supervisor no longer commands it).
+  const hal::FlightStatus& flight_status() const { return flight_status_; }
   const ClockServer& clock_server() const { return clock_server_; }
   const UavSupervisorConfig& config() const { return config_; }
 
@@ -183,6 +186,7 @@ class UavSupervisorTask {
   std::array<StampGate, limits::kMaxUgvs> request_stamps_{}, status_stamps_{};
 
   ClockServer clock_server_;
+  hal::FlightStatus flight_status_;
   hal::UavState state_;
   bool have_state_ = false;
   TimePoint last_control_{};

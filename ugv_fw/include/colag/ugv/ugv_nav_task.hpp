@@ -35,7 +35,8 @@ struct UgvHealth {
   std::uint64_t patches_rejected = 0;
   std::uint64_t statuses_rejected = 0;
   std::uint64_t drive_errors = 0;
-  std::uint64_t watchdog_trips = 0;  // wheel odometry went silent
+  std::uint64_t watchdog_trips = 0;   // wheel odometry went silent
+  std::uint64_t uav_unavailable = 0;  // times the UAV said its flight controller left the mission
   std::uint64_t plans = 0;
   std::uint64_t plan_failures = 0;
   std::uint64_t support_messages = 0;
@@ -157,6 +158,7 @@ class UgvNavTask {
   msg::UgvMode mode_ = msg::UgvMode::kWaitingForInit;
   msg::BlockedReason blocked_reason_ = msg::BlockedReason::kNone;  // set with mode_
   bool fault_ = false;
+  msg::UavFlight uav_flight_ = msg::UavFlight::kInControl;  // as the UAV's last sample said
   bool stopped_for_support_ = false;
   bool awaiting_fix_ = false;  // at the goal by its estimate, not sure enough to have arrived
   bool stopped_for_robot_ = false;

@@ -42,6 +42,7 @@ constexpr WaitPart wait_part(msg::UgvMode mode, msg::BlockedReason why, bool pla
                              bool tracking) {
   switch (mode) {
     case msg::UgvMode::kWaitingForSupport:
+    case msg::UgvMode::kUavUnavailable:  // waiting for the UAV to fly again
       return WaitPart::kSupport;
     case msg::UgvMode::kWaitingForRobot:
       return WaitPart::kOtherUgv;

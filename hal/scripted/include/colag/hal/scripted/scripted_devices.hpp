@@ -167,12 +167,25 @@ class RecordingFlightController final : public FlightController {
     ++count_;
     return Status::ok();
   }
+  FlightStatus update(TimePoint now) override {
+    (void)now;
+    return status_;
+  }
+  void land(TimePoint now) override {
+    (void)now;
+    landing_ = true;
+  }
   const FlightSetpoint& last() const { return last_; }
   std::size_t count() const { return count_; }
+  // What update() reports from now on.
+  void set_status(FlightStatus s) { status_ = s; }
+  bool landing() const { return landing_; }
 
  private:
   FlightSetpoint last_{};
   std::size_t count_ = 0;
+  FlightStatus status_{};
+  bool landing_ = false;
 };
 
 }  // namespace colag::hal::scripted
