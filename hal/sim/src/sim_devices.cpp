@@ -3,10 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
-#include "colag/hal/sim/take_one.hpp"
+#include "colag/hal/dds/take_one.hpp"
 #include "sim.h"
 
 namespace colag::hal::sim {
+using dds::take_one;
 
 Status SimCanBus::send(const hal::CanFrame& frame, TimePoint) {
   if (!hal::is_valid(frame)) {

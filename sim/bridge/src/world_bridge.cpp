@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "colag/hal/sim/take_one.hpp"
+#include "colag/hal/dds/take_one.hpp"
 #include "sim.h"
 
 namespace colag::sim {
@@ -21,7 +21,7 @@ WorldBridge::WorldBridge(hal::sim::SimLink& link, SimWorld& world, bool with_uav
 
 void WorldBridge::step() {
   // Robots' commands -> their simulated motor controllers.
-  while (hal::sim::take_one<colag_sim_CanFrame>(
+  while (hal::dds::take_one<colag_sim_CanFrame>(
       link_.reader(hal::sim::SimTopic::kCanFromRobot), [&](const auto& f) {
         if (f.robot_id >= world_.ugv_count()) {
           ++counters_.frames_for_unknown_robots;
@@ -54,7 +54,7 @@ void WorldBridge::step() {
   if (!with_uav_) return;
 
   // Setpoints -> the UAV body.
-  while (hal::sim::take_one<colag_sim_FlightSetpoint>(
+  while (hal::dds::take_one<colag_sim_FlightSetpoint>(
       link_.reader(hal::sim::SimTopic::kSetpoint), [&](const auto& s) {
         hal::FlightSetpoint sp;
         sp.stamp = time_at_nanoseconds(s.stamp_ns);

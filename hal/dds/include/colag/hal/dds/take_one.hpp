@@ -1,8 +1,9 @@
 #pragma once
-// Taking samples of the sim link one at a time, on loan from Cyclone (no copy of ours).
+// Taking DDS samples one at a time, on loan from Cyclone (no copy of ours): the sim link, the
+// PX4 and ROS 2 drivers.
 #include <dds/dds.h>
 
-namespace colag::hal::sim {
+namespace colag::hal::dds {
 
 // Takes the oldest sample of `reader` and hands it to `use` if it carries data (not a
 // dispose). Returns false when nothing was queued.
@@ -18,4 +19,4 @@ bool take_one(dds_entity_t reader, Use&& use) {
   return true;
 }
 
-}  // namespace colag::hal::sim
+}  // namespace colag::hal::dds
