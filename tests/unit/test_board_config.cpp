@@ -279,6 +279,54 @@ camera: {max_range_m: 5.0, fov_half_angle_deg: 75.0}
   EXPECT_NE(error.find("camera.fov_half_angle_deg: out of range"), std::string::npos) << error;
 }
 
+TEST_F(BoardConfig, UavOnPx4NamesItsReleaseTopicsAndFrames) {
+  UavBoardConfig c;
+  std::string error;
+  ASSERT_TRUE(load_uav_config(write("uav_px4.yaml", R"(
+robot: {id: 0, hal: px4}
+px4: {release: "v1.15", dds_domain: 3, namespace: uav1, system_id: 2, origin: [1, 2, 0, 90]}
+odometry: {source: px4, latency_ms: 15}
+lidar: {topic: /cloud_registered_body, mount: [0, 0, -0.1, 0, 30, 0], max_range_m: 10}
+camera: {device: sim}
+)"),
+                              c, error))
+      << error;
+  EXPECT_TRUE(c.px4_hal);
+  EXPECT_TRUE(c.sim_camera);  // colag_world's camera (SITL): no calibration needed
+  EXPECT_EQ(c.px4.release, hal::px4::Px4Release::kV115);
+  EXPECT_EQ(c.px4.dds_domain, 3u);
+  EXPECT_EQ(c.px4.ns, "uav1");
+  EXPECT_EQ(c.px4.target_system, 2);
+  EXPECT_NEAR((c.px4.origin.p - Vec3(1, 2, 0)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR(yaw_of(c.px4.origin.q), M_PI / 2, 1e-12);
+  EXPECT_TRUE(c.odometry_from_px4);
+  EXPECT_EQ(c.px4.odometry_latency, std::chrono::milliseconds(15));
+  EXPECT_EQ(c.lidar.dds_domain, 3u);  // the PX4 agent's domain unless said
+  EXPECT_EQ(c.lidar.topic, "/cloud_registered_body");
+  EXPECT_FLOAT_EQ(c.lidar.max_range_m, 10.0F);
+  EXPECT_NEAR((c.lidar_mount.q * Vec3::UnitX()).z(), -0.5, 1e-12);  // pitched 30 deg down
+  EXPECT_EQ(c.lidar_pattern.beams, 0);                              // no pattern: returns only
+
+  auto refused = [&](const std::string& text, const char* why) {
+    EXPECT_FALSE(load_uav_config(write("uav_bad.yaml", text), c, error)) << text;
+    EXPECT_NE(error.find(why), std::string::npos) << error;
+  };
+  refused("robot: {id: 0, hal: px4}\ncamera: {device: sim}", "px4: required");
+  refused("robot: {id: 0, hal: px4}\npx4: {dds_domain: 0}\ncamera: {device: sim}",
+          "px4.release: required");
+  refused("robot: {id: 0, hal: px4}\npx4: {release: main}\ncamera: {device: sim}",
+          "px4.release: 'main' is not a known release (1.15, 1.16)");
+  refused(
+      "robot: {id: 0, hal: px4}\npx4: {release: '1.16'}\nodometry: {source: vins}\n"
+      "camera: {device: sim}",
+      "odometry.source: expected fast_lio");
+  refused(
+      "robot: {id: 0, hal: px4}\npx4: {release: '1.16', origin: [0, 0, 0]}\n"
+      "camera: {device: sim}",
+      "px4.origin: expected a list of 4 numbers");
+  refused("robot: {id: 0, hal: drone}", "robot.hal: expected board, sim or px4");
+}
+
 }  // namespace
 }  // namespace colag::board
 

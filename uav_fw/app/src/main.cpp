@@ -5,12 +5,12 @@
 // --check-config validates the configuration and the camera calibration it names.
 // --camera-test runs the camera RPE device (capture thread, AprilTag detection, pose) and prints
 //   each UGV it sees twice a second: the bring-up step for a new camera, calibration or tag set.
-// With `robot.hal: sim`, uav_fw runs the mission: the UavSupervisorTask with Cyclone DDS to the
-// UGVs and colag_world's simulated flight controller, odometry, LiDAR and camera over the sim
-// link (SITL, scripts/sitl.sh). On a board a mission also needs the UAV's flight-controller,
-// odometry and LiDAR drivers (hal::FlightController, hal::OdometrySource, hal::Lidar); this
-// repository has no such drivers yet, and uav_fw says so instead of flying without them.
-//   uav_fw --config uav.yaml      (robot.hal: sim; runs until SIGINT/SIGTERM)
+// With `robot.hal: px4` or `sim`, uav_fw runs the mission: the UavSupervisorTask with Cyclone
+// DDS to the UGVs, on PX4 (through its uXRCE-DDS agent), FAST-LIO's or PX4's odometry, the
+// LiDAR's ROS 2 driver and the camera (px4), or on colag_world's simulated devices over the sim
+// link (sim: SITL, scripts/sitl.sh). With PX4 it takes off through the offboard protocol and,
+// when stopped (SIGINT/SIGTERM or --duration), lands and waits for PX4 to disarm.
+//   uav_fw --config uav.yaml      (runs until SIGINT/SIGTERM)
 //
 // Exit codes: 0 success, 1 a device failed or is missing, 2 a usage or configuration error.
 #include <array>
@@ -60,19 +60,43 @@ int run_mission(const uav::UavBoardConfig& cfg, const board::ProgramArgs& args) 
     std::fprintf(stderr, "uav_fw: %s\n", error.c_str());
     return board::kExitDevice;
   }
-  std::printf("uav_fw: mission on the simulated UAV (sim link on DDS domain %u)\n",
-              hal::sim::sim_domain_for(cfg.common.dds_domain));
+  if (cfg.px4_hal) {
+    std::printf("uav_fw: mission on PX4 %s (DDS domain %u%s%s), odometry %s, LiDAR %s\n",
+                hal::px4::to_string(cfg.px4.release), cfg.px4.dds_domain,
+                cfg.px4.ns.empty() ? "" : ", namespace ", cfg.px4.ns.c_str(),
+                cfg.odometry_from_px4 ? "from PX4" : cfg.odometry.topic.c_str(),
+                cfg.lidar.topic.c_str());
+  } else {
+    std::printf("uav_fw: mission on the simulated UAV (sim link on DDS domain %u)\n",
+                hal::sim::sim_domain_for(cfg.common.dds_domain));
+  }
   std::fflush(stdout);
   board::stop_on_signals(uav.executor());
   const TimePoint now = uav.executor().clock().now();
   uav.run(args.seconds > 0.0 ? now + seconds(args.seconds) : TimePoint::max());
   std::printf("uav_fw: stopping\n");
+  if (cfg.px4_hal) {
+    std::printf("uav_fw: landing\n");
+    std::fflush(stdout);
+    std::printf(uav.land(std::chrono::seconds(60)) ? "uav_fw: landed and disarmed\n"
+                                                   : "uav_fw: not landed by us (see px4: lines)\n");
+  }
   board::print_task_stats("uav_fw", uav.schedule());
   uav.print_counters("uav_fw");
   return board::kExitOk;
 }
 
 void describe(const uav::UavBoardConfig& cfg) {
+  if (cfg.px4_hal) {
+    std::printf(
+        "uav_fw: UAV %d, PX4 %s on DDS domain %u (topics rt/%s%sfmu/...), odometry %s%s, LiDAR "
+        "%s on DDS domain %u, camera %s, DDS domain %u\n",
+        cfg.id, hal::px4::to_string(cfg.px4.release), cfg.px4.dds_domain, cfg.px4.ns.c_str(),
+        cfg.px4.ns.empty() ? "" : "/", cfg.odometry_from_px4 ? "from PX4" : "from ",
+        cfg.odometry_from_px4 ? "" : cfg.odometry.topic.c_str(), cfg.lidar.topic.c_str(),
+        cfg.lidar.dds_domain, cfg.camera.uri.c_str(), cfg.common.dds_domain);
+    return;
+  }
   if (cfg.sim_hal) {
     std::printf("uav_fw: UAV %d, simulated HAL (SITL), DDS domain %u\n", cfg.id,
                 cfg.common.dds_domain);
@@ -86,12 +110,12 @@ void describe(const uav::UavBoardConfig& cfg) {
 }
 
 int run(const uav::UavBoardConfig& cfg, const board::ProgramArgs& args) {
-  if (cfg.sim_hal) return run_mission(cfg, args);
-  if (args.time_scale != 1.0) {
-    std::fprintf(stderr, "uav_fw: --time-scale is for the simulated HAL (robot.hal: sim)\n");
+  if (args.time_scale != 1.0 && !cfg.sim_hal && !cfg.sim_camera) {
+    std::fprintf(stderr, "uav_fw: --time-scale is for the simulated world (SITL)\n");
     return board::kExitUsage;
   }
-  if (args.seconds < 0.0) return run_mission(cfg, args);  // says what is missing
+  // The mission, unless --camera-test (robot.hal board: says what a mission needs).
+  if (cfg.sim_hal || args.seconds < 0.0) return run_mission(cfg, args);
 
   platform::RealtimeExecutor exec;
   linux_hal::CameraRpe camera(cfg.rpe, cfg.camera, exec.clock());

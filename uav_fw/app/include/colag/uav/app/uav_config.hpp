@@ -5,6 +5,8 @@
 
 #include "colag/board/config.hpp"
 #include "colag/hal/linux/camera_rpe.hpp"
+#include "colag/hal/px4/px4_flight_controller.hpp"
+#include "colag/hal/ros2/ros2_devices.hpp"
 #include "colag/uav/camera_altitude.hpp"
 #include "colag/uav/no_return_beams.hpp"
 
@@ -13,8 +15,17 @@ namespace colag::uav {
 struct UavBoardConfig {
   board::CommonBoardConfig common;
   RobotId id = 0;
-  // robot.hal: "board" (the UAV's own drivers) or "sim" (colag_world over the sim link: SITL).
+  // robot.hal: "sim" (colag_world's devices over the sim link: SITL), "px4" (PX4 over its
+  // uXRCE-DDS agent, LiDAR-inertial odometry and LiDAR from their ROS 2 drivers, the camera),
+  // "board" (the camera alone: --camera-test).
   bool sim_hal = false;
+  bool px4_hal = false;
+  hal::px4::Px4DriverConfig px4;
+  bool odometry_from_px4 = false;  // odometry.source: px4 (VehicleOdometry) or fast_lio
+  hal::ros2::Ros2OdometryConfig odometry;
+  hal::ros2::Ros2LidarConfig lidar;
+  Pose3 lidar_mount;        // LiDAR frame -> UAV body (lidar.mount)
+  bool sim_camera = false;  // camera.device: sim (colag_world's camera over the sim link)
   linux_hal::TagPoseConfig rpe;
   linux_hal::CameraSource camera;
   std::string calibration_file;  // OpenCV calibration YAML, required
