@@ -5,6 +5,7 @@
 #   scripts/sitl.sh [--ugvs N] [--scenario sparse|dense] [--seed S] [--max-time S]
 #                   [--world ideal|field|FILE] [--json OUT] [--netns] [--loss PCT] [--domain D] [--build DIR]
 #                   [--time-scale X] [--kill-ugv I@T [--restart-after S]]
+#                   [--uav-stack sim|px4 [--px4-release R] [--px4-silent-at T | --px4-failsafe-at T]]
 # Waits for the mission to end, writes the metrics JSON (colag_sim's schema; default
 # build/sitl/run-<pid>/metrics.json), stops every process by PID, prints a summary, and exits 0 when
 # every UGV reached its goal with no collision (1 otherwise, 2 on a usage or set-up error, 77
@@ -25,6 +26,12 @@
 #   --kill-ugv I@T  kills UGV I's ugv_fw (SIGKILL: a crash) at mission time T s; the world keeps
 #               its body where it stopped. --restart-after S starts it again S s later, with the
 #               same configuration: it resumes from the pose it kept (robot.state_file).
+#   --uav-stack px4  uav_fw flies with robot.hal px4 through its real drivers: colag_world plays
+#               PX4's uXRCE-DDS agent (px4_msgs, release --px4-release, default 1.16), FAST-LIO's
+#               /Odometry and the Livox driver's /livox/lidar on the sim link's domain (D + 1);
+#               the UAV takes off from the ground through the offboard protocol. Faults:
+#               --px4-silent-at T (the agent falls silent) or --px4-failsafe-at T (PX4 fails
+#               safe): every UGV stops within a second, uav.log says why.
 # Logs and configurations: build/sitl/run-<pid>/.
 set -euo pipefail
 caller=$PWD
@@ -32,7 +39,8 @@ cd "$(dirname "$0")/.."
 
 ugvs=3 scenario=dense seed=1 max_time=400 json="" netns=0 loss=0 scale=1
 build=build/host domain="" kill_ugv="" restart_after="" world_name=ideal
-usage() { sed -n '2,27p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
+uav_stack=sim px4_release=1.16 px4_fault=()
+usage() { sed -n '2,34p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
 while (($#)); do
   case "$1" in
     --ugvs) ugvs=$2; shift 2 ;;
@@ -48,10 +56,15 @@ while (($#)); do
     --time-scale) scale=$2; shift 2 ;;
     --kill-ugv) kill_ugv=$2; shift 2 ;;
     --restart-after) restart_after=$2; shift 2 ;;
+    --uav-stack) uav_stack=$2; shift 2 ;;
+    --px4-release) px4_release=$2; shift 2 ;;
+    --px4-silent-at|--px4-failsafe-at) px4_fault=("$1" "$2"); shift 2 ;;
     *) usage ;;
   esac
 done
 [[ $ugvs =~ ^[0-9]+$ ]] && ((ugvs >= 1 && ugvs <= 16)) || { echo "sitl: --ugvs must be 1..16" >&2; exit 2; }
+[[ $uav_stack == sim || $uav_stack == px4 ]] || { echo "sitl: --uav-stack must be sim or px4" >&2; exit 2; }
+[[ $uav_stack == px4 || ${#px4_fault[@]} -eq 0 ]] || { echo "sitl: PX4 faults need --uav-stack px4" >&2; exit 2; }
 [[ $loss =~ ^[0-9]+$ ]] && ((loss <= 100)) || { echo "sitl: --loss must be 0..100" >&2; exit 2; }
 ((loss == 0 || netns)) || { echo "sitl: --loss needs --netns (loss is injected per namespace)" >&2; exit 2; }
 number='^[0-9]+([.][0-9]+)?$'
@@ -110,12 +123,16 @@ fi
 
 lane_x() { local i=$1; echo $(( (i % 2 == 1 ? -2 : 2) * ((i + 1) / 2) )); }
 cat >"$run/uav.yaml" <<YAML
-robot: {id: 0, hal: sim}
+robot: {id: 0, hal: $uav_stack}
 dds: {domain: $domain}
 realtime: {fifo_priority: 0, lock_memory: false}
 YAML
-# The UAV's sensors as the world simulates them, described as on a board.
-"$build/bin/colag_world" --world "$world_name" --print-uav-sensors >>"$run/uav.yaml" ||
+# The UAV's sensors (and, on PX4, its flight stack's topics) as the world simulates them,
+# described as on a board.
+stack_args=(--uav-stack "$uav_stack")
+[[ $uav_stack == sim ]] || stack_args+=(--px4-release "$px4_release" "${px4_fault[@]}")
+"$build/bin/colag_world" --world "$world_name" --domain "$domain" "${stack_args[@]}" \
+  --print-uav-sensors >>"$run/uav.yaml" ||
   { echo "sitl: --world $world_name: see above" >&2; exit 2; }
 for ((i = 0; i < ugvs; ++i)); do
   x=$(lane_x "$i")
@@ -200,11 +217,11 @@ in_ns() {  # namespace command...
 # A killed robot is silent until it is started again (and found by DDS discovery).
 silence=5
 [ -z "$kill_ugv" ] || silence=$(awk -v r="${restart_after:-1e6}" 'BEGIN {print r + 30}')
-echo "sitl: $scenario, $ugvs UGVs, seed $seed, $world_name world, time x$scale, DDS domain $domain (sim link $((domain + 1)))$( ((netns)) && echo ", one network namespace per robot")$( ((loss)) && echo ", $loss % loss")"
+echo "sitl: $scenario, $ugvs UGVs, seed $seed, $world_name world, UAV on $uav_stack$([[ $uav_stack == px4 ]] && echo " $px4_release"), time x$scale, DDS domain $domain (sim link $((domain + 1)))$( ((netns)) && echo ", one network namespace per robot")$( ((loss)) && echo ", $loss % loss")"
 echo "sitl: logs and configs in $run"
 in_ns "$hub" "$build/bin/colag_world" --scenario "$scenario" --ugvs "$ugvs" --seed "$seed" --world "$world_name" \
   --domain "$domain" --max-time "$max_time" --json "$json" --time-scale "$scale" \
-  --max-silence "$silence" >"$run/world.log" 2>&1 &
+  --max-silence "$silence" "${stack_args[@]}" >"$run/world.log" 2>&1 &
 world=$!
 pids+=("$world")
 in_ns "${ns_of[0]}" "$build/bin/uav_fw" --config "$run/uav.yaml" --time-scale "$scale" >"$run/uav.log" 2>&1 &
@@ -260,6 +277,20 @@ if ((world_rc != 0)) || [ ! -s "$json" ]; then
   exit 1
 fi
 echo "sitl: metrics in $json"
+if ((${#px4_fault[@]})); then
+  # A PX4 fault: the mission cannot end; what counts is that every UGV stood still within a
+  # second, with no collision, and the UAV said why.
+  stood=$(sed -n 's/.*every UGV stood still \([0-9.]*\) s after.*/\1/p' "$run/world.log")
+  why=$(grep -m1 'px4: no longer in control' "$run/uav.log" || true)
+  echo "sitl: after PX4's fault: every UGV still after ${stood:-never} s; uav_fw: ${why:-no report}"
+  if [ -n "$stood" ] && awk -v s="$stood" 'BEGIN {exit !(s <= 1.0)}' && [ -n "$why" ] &&
+     grep -q '"collisions": 0' "$json"; then
+    echo "sitl: PASS: every UGV stopped within 1 s of PX4's fault, no collision"
+    exit 0
+  fi
+  echo "sitl: FAIL: the UGVs did not all stop within 1 s of PX4's fault, or a collision" >&2
+  exit 1
+fi
 if grep -q '"all_reached": true' "$json" && grep -q '"collisions": 0' "$json"; then
   echo "sitl: PASS: every UGV reached its goal, no collision"
 else

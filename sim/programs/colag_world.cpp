@@ -25,6 +25,7 @@
 #include "colag/platform/dds/dds_transport.hpp"
 #include "colag/platform/realtime_executor.hpp"
 #include "colag/platform/worker_pool.hpp"
+#include "colag/sim/bridge/px4_stack_bridge.hpp"
 #include "colag/sim/bridge/world_bridge.hpp"
 #include "colag/sim/host_program.hpp"
 #include "colag/sim/mission/mission.hpp"
@@ -32,6 +33,7 @@
 #include "colag/sim/mission/world_file.hpp"
 #include "colag/sim/mission/world_setup.hpp"
 #include "colag/sim/world/sim_world.hpp"
+#include "colag/ugv/waiting.hpp"
 
 using namespace colag;
 using namespace std::chrono_literals;
@@ -83,17 +85,80 @@ class WorldStep final : public platform::Task {
   TimePoint last_{};
 };
 
-// The simulated UAV's sensors as uav_fw's config describes a board's (see config/uav.example.yaml).
-void print_uav_sensors(const sim::SimWorldConfig& wc) {
+// The simulated UAV's sensors as uav_fw's config describes a board's (see config/uav.example.yaml
+// and, for its flight stack on PX4's and ROS 2's wire formats, config/uav_px4.example.yaml).
+void print_uav_sensors(const sim::SimWorldConfig& wc, const sim::Px4StackConfig* px4) {
   const uav::LidarBeamPattern p = mission::beam_pattern_of(wc.lidar);
   const uav::CameraView v = mission::camera_view_of(wc.camera);
   std::printf(
-      "lidar: {beams: %d, lowest_elevation_deg: %.3f, elevation_step_deg: %.3f, columns: %d}\n",
+      "lidar: {beams: %d, lowest_elevation_deg: %.3f, elevation_step_deg: %.3f, columns: %d",
       p.beams, p.lowest_elevation_deg, p.elevation_step_deg, p.columns);
+  if (px4 != nullptr) {
+    // Each scan is published as it is taken: no latency beyond the link's.
+    std::printf(", topic: %s, dds_domain: %u, max_range_m: %.1f, latency_ms: 0",
+                px4->lidar_topic.c_str(), px4->dds_domain, wc.lidar.max_range_m);
+  }
+  std::printf("}\n");
   // The simulated camera tells the UGVs apart without tags; they stand at the default height.
-  std::printf("camera: {max_range_m: %.3f, fov_half_angle_deg: %.3f}\n", v.range_m,
-              std::min(v.half_angle_deg, 180.0));
+  std::printf("camera: {%smax_range_m: %.3f, fov_half_angle_deg: %.3f}\n",
+              px4 != nullptr ? "device: sim, " : "", v.range_m, std::min(v.half_angle_deg, 180.0));
+  if (px4 == nullptr) return;
+  std::printf("px4: {release: \"%s\", dds_domain: %u}\n", hal::px4::to_string(px4->release),
+              px4->dds_domain);
+  std::printf("odometry: {source: fast_lio, topic: %s, dds_domain: %u, latency_ms: %.1f}\n",
+              px4->odometry_topic.c_str(), px4->dds_domain,
+              to_seconds(wc.uav.odometry.latency) * 1e3);
 }
+
+// colag_world's flight stack (--uav-stack px4), and the faults it can play.
+// After a fault it measures how long the UGVs take to stand still (the firmware's promise: within
+// a second, since the UAV no longer supports them and may come down anywhere).
+class Px4StackStep final : public platform::Task {
+ public:
+  Px4StackStep(sim::Px4StackBridge& bridge, const sim::SimWorld& world, double silent_at_s,
+               double failsafe_at_s)
+      : bridge_(bridge), world_(world), silent_at_s_(silent_at_s), failsafe_at_s_(failsafe_at_s) {}
+  const char* name() const override { return "px4_stack"; }
+  Status init(TimePoint now) override {
+    start_ = now;
+    return Status::ok();
+  }
+  void step(TimePoint now) override {
+    const double t = to_seconds(now - start_);
+    if (silent_at_s_ >= 0.0 && t >= silent_at_s_ && !silent_) {
+      silent_ = true;
+      bridge_.set_silent(true);
+      std::printf("colag_world: PX4 falls silent at %.1f s\n", t);
+    }
+    if (failsafe_at_s_ >= 0.0 && t >= failsafe_at_s_ && !failsafe_) {
+      failsafe_ = true;
+      bridge_.fail_safe();
+      std::printf("colag_world: PX4 fails safe (holds) at %.1f s\n", t);
+    }
+    bridge_.step(now);
+    if ((silent_ || failsafe_) && !reported_) {
+      const double since =
+          t - std::max(silent_ ? silent_at_s_ : -1.0, failsafe_ ? failsafe_at_s_ : -1.0);
+      bool still = true;
+      for (int i = 0; i < world_.ugv_count(); ++i)
+        still = still && std::abs(world_.ugv(i).speed_mps()) < ugv::kStillSpeed_mps;
+      if (still || since > 5.0) {
+        reported_ = true;
+        std::printf(still ? "colag_world: every UGV stood still %.2f s after PX4's fault\n"
+                          : "colag_world: UGVs still moving %.2f s after PX4's fault\n",
+                    since);
+      }
+    }
+  }
+
+ private:
+  sim::Px4StackBridge& bridge_;
+  const sim::SimWorld& world_;
+  double silent_at_s_, failsafe_at_s_;
+  bool reported_ = false;
+  bool silent_ = false, failsafe_ = false;
+  TimePoint start_{};
+};
 
 class BridgeStep final : public platform::Task {
  public:
@@ -270,6 +335,9 @@ int run(int argc, char** argv) {
   bool quiet = false;
   bool print_sensors = false;
   std::string world_name = "ideal";
+  std::string uav_stack = "sim";
+  std::string px4_release = "1.16";
+  double px4_silent_at = -1.0, px4_failsafe_at = -1.0;
   app.add_option("--scenario", cfg.scenario, "sparse | dense")
       ->check(CLI::IsMember({"sparse", "dense", "pillars"}));
   app.add_option("--map", cfg.map_file, "a PCD map instead of a generated scenario");
@@ -294,6 +362,18 @@ int run(int argc, char** argv) {
   app.add_option("--world", world_name,
                  "ideal (the paper's), field (what real sensors do), or a YAML world file "
                  "(config/worlds/field.yaml); each robot's clock is the host's in SITL");
+  app.add_option("--uav-stack", uav_stack,
+                 "sim: the UAV's devices over the sim link (robot.hal sim); px4: PX4's agent, "
+                 "FAST-LIO and the Livox driver on their wire formats (robot.hal px4)")
+      ->check(CLI::IsMember({"sim", "px4"}));
+  app.add_option("--px4-release", px4_release, "the PX4 release played (1.15 | 1.16)")
+      ->check(CLI::IsMember({"1.15", "1.16"}));
+  app.add_option("--px4-silent-at", px4_silent_at,
+                 "fault: PX4 (its agent) falls silent at this mission time, s")
+      ->check(sim::positive_up_to(1e6));
+  app.add_option("--px4-failsafe-at", px4_failsafe_at,
+                 "fault: PX4 fails safe (holds, failsafe flag) at this mission time, s")
+      ->check(sim::positive_up_to(1e6));
   app.add_flag("--print-uav-sensors", print_sensors,
                "print the uav.yaml sections describing the world's UAV LiDAR and camera, exit");
   app.add_flag("--quiet", quiet, "only errors");
@@ -307,8 +387,17 @@ int run(int argc, char** argv) {
     return 2;
   }
   const sim::SimWorldConfig wc = mission::sim_world_config(cfg);
+  const bool px4 = uav_stack == "px4";
+  if ((px4_silent_at >= 0.0 || px4_failsafe_at >= 0.0) && !px4) {
+    std::fprintf(stderr, "colag_world: --px4-silent-at / --px4-failsafe-at need --uav-stack px4\n");
+    return 2;
+  }
+  const std::uint32_t sim_domain = hal::sim::sim_domain_for(domain);
+  sim::Px4StackConfig stack;
+  stack.dds_domain = sim_domain;  // beside the sim link: the robots' domain sees none of it
+  stack.release = hal::px4::parse_px4_release(px4_release).value();
   if (print_sensors) {
-    print_uav_sensors(wc);
+    print_uav_sensors(wc, px4 ? &stack : nullptr);
     return 0;
   }
   // Each process reads the host's clock: the world's sensor stamps must be on it too.
@@ -336,16 +425,25 @@ int run(int argc, char** argv) {
   std::vector<sim::WheelErrors> wheels = mission::draw_wheels(cfg);
   for (int i = 0; i < cfg.ugvs; ++i)
     world.add_ugv(mission::ugv_start(i), {}, &wheels[static_cast<std::size_t>(i)]);
-  world.add_uav(mission::uav_start());
+  // On PX4 the UAV takes off from the ground through the offboard protocol.
+  const Vec3 uav_start = mission::uav_start();
+  world.add_uav(px4 ? Vec3(uav_start.x(), uav_start.y(), 0.05) : uav_start);
 
   hal::sim::SimLink link;
-  const std::uint32_t sim_domain = hal::sim::sim_domain_for(domain);
   if (const Status s = link.init(sim_domain, hal::sim::SimLink::Side::kWorld); !s) {
     std::fprintf(stderr, "colag_world: sim link on DDS domain %u: %s (%s)\n", sim_domain,
                  s.message(), dds_strretcode(link.last_error()));
     return 1;
   }
-  sim::WorldBridge bridge(link, world, true);
+  sim::WorldBridge bridge(link, world, true, px4);
+  sim::Px4StackBridge px4_bridge(world);
+  if (px4) {
+    if (std::string stack_error; !px4_bridge.init(stack, stack_error)) {
+      std::fprintf(stderr, "colag_world: %s\n", stack_error.c_str());
+      return 1;
+    }
+  }
+  Px4StackStep px4_step(px4_bridge, world, px4_silent_at, px4_failsafe_at);
   platform::dds::DdsTransport dds;
   platform::dds::DdsConfig dds_cfg;
   dds_cfg.domain_id = domain;
@@ -367,6 +465,7 @@ int run(int argc, char** argv) {
   platform::TransportPump pump(dds);
   Monitor monitor(cfg, world, traffic, exec, start_timeout_s, max_silence_s, quiet);
   st = exec.add({&bridge_step, 10ms, 5ms});
+  if (st && px4) st = exec.add({&px4_step, 10ms, 5ms});
   if (st) st = exec.add({&world_step, 20ms, 15ms});
   if (st) st = exec.add({&pump, 10ms, 5ms});
   if (st) st = exec.add({&monitor, 100ms, 5ms});
@@ -377,9 +476,11 @@ int run(int argc, char** argv) {
   }
   if (!quiet)
     std::printf(
-        "colag_world: %s, %d UGVs, seed %llu, %s world; robots on DDS domain %u, sim link on %u\n",
+        "colag_world: %s, %d UGVs, seed %llu, %s world; robots on DDS domain %u, sim link on "
+        "%u%s%s\n",
         cfg.scenario.c_str(), cfg.ugvs, static_cast<unsigned long long>(cfg.seed),
-        cfg.world.name.c_str(), domain, sim_domain);
+        cfg.world.name.c_str(), domain, sim_domain, px4 ? "; the UAV on PX4 " : "",
+        px4 ? px4_release.c_str() : "");
   std::fflush(stdout);
   const auto wall_start = std::chrono::steady_clock::now();
   exec.run_until(TimePoint::max());
@@ -437,6 +538,16 @@ int run(int argc, char** argv) {
         static_cast<unsigned long long>(b.frames_from_robots),
         static_cast<unsigned long long>(b.setpoints), static_cast<unsigned long long>(b.scans),
         static_cast<double>(b.scan_bytes) / 1e6, static_cast<unsigned long long>(b.rpe_frames));
+    if (px4) {
+      const sim::Px4StackCounters& c = px4_bridge.counters();
+      std::printf(
+          "colag_world: PX4: %llu offboard heartbeats, %llu setpoints, %llu commands; %llu "
+          "statuses, %llu odometry, %llu clouds out\n",
+          static_cast<unsigned long long>(c.heartbeats),
+          static_cast<unsigned long long>(c.setpoints), static_cast<unsigned long long>(c.commands),
+          static_cast<unsigned long long>(c.statuses), static_cast<unsigned long long>(c.odometry),
+          static_cast<unsigned long long>(c.clouds));
+    }
     if (!json_path.empty()) std::printf("colag_world: metrics in %s\n", json_path.c_str());
   }
   return 0;

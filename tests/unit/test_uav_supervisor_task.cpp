@@ -47,7 +47,7 @@ class Sky final : public platform::Task {
     s.stamp = now;
     s.pose = {p, Quat::Identity()};
     s.velocity_mps = v;
-    (void)odom_.push(s);
+    if (odometry_on) (void)odom_.push(s);
     if (++ticks_ % 5 == 0) {  // 10 Hz
       std::span<const hal::LidarPoint> pts, misses;
       sim_->scan(world_, s.pose, pts, misses);
@@ -74,6 +74,7 @@ class Sky final : public platform::Task {
   double travelled = 0.0;
   std::vector<Vec2> ugvs;  // where the UGVs are (for the camera)
   bool returns_only = false;
+  bool odometry_on = true;
 
  private:
   hal::scripted::ScriptedOdometrySource& odom_;
@@ -384,4 +385,17 @@ TEST(UavSupervisorTask, AFlightControllerThatLeavesTheMissionIsNoLongerCommanded
   EXPECT_LE(rig.fc.count(), sent + 1);  // at most the setpoint of the tick it changed in
   EXPECT_EQ(rig.uav->health().flight_lost, 1u);
   EXPECT_EQ(rig.uav->flight_status().fault, msg::FlightFault::kFailsafe);
+
+  // Its odometry gone too (the flight stack down): the flight state still reaches the UGVs, as
+  // the last sample repeated, at once on a change and at 5 Hz after.
+  rig.sky->odometry_on = false;
+  rig.ex.run_until(rig.ex.now() + 100ms);
+  const std::size_t before = odometry.got.size();
+  const TimePoint last_stamp = odometry.got.back().stamp;
+  rig.fc.set_status({msg::UavFlight::kLost, msg::FlightFault::kSilent});
+  rig.ex.run_until(rig.ex.now() + 1s);
+  ASSERT_GE(odometry.got.size(), before + 5);
+  EXPECT_LE(odometry.got.size(), before + 7);
+  EXPECT_EQ(odometry.got.back().stamp, last_stamp);  // no new pose is made up
+  EXPECT_EQ(odometry.got.back().fault, msg::FlightFault::kSilent);
 }

@@ -291,6 +291,15 @@ TEST(UgvNavTask, AUavWhoseFlightControllerLeftTheMissionStopsItUntilItFliesAgain
   EXPECT_EQ(rig.ugv->mode(), msg::UgvMode::kUavUnavailable);
   EXPECT_EQ(rig.drive.last().v_mps, 0.0);
   EXPECT_EQ(rig.ugv->health().uav_unavailable, 1u);
+  // A repeated sample (the UAV without fresh odometry) says the flight state and nothing else.
+  msg::UavOdometry repeat;
+  repeat.stamp = rig.ex.now() - 1s;
+  repeat.flight = msg::UavFlight::kLost;
+  const auto rejected = rig.ugv->health().uav_odometry_rejected;
+  for (int i = 0; i < 3; ++i)
+    ASSERT_TRUE(rig.bus->publish(repeat));
+  rig.ex.run_until(rig.ex.now() + 100ms);
+  EXPECT_EQ(rig.ugv->health().uav_odometry_rejected, rejected + 1);  // the first: too old
   rig.world->flight = msg::UavFlight::kInControl;
   ASSERT_TRUE(rig.run_until([&] { return rig.ugv->mode() == msg::UgvMode::kArrived; }, 40s))
       << "mode " << static_cast<int>(rig.ugv->mode());

@@ -126,6 +126,20 @@ void UavSupervisorTask::control_step(TimePoint now) {
     od.flight = flight.state;  // every UGV stops while the flight controller is not ours
     od.fault = flight.fault;
     (void)transport_.publish(od);
+    last_odometry_ = od;
+    odometry_sent_ = now;
+  }
+  // Without fresh odometry the flight state still reaches the UGVs: the last sample again, at
+  // once on a change, then 5 Hz while it is not in control (a UGV takes a repeated stamp for
+  // the flight state alone).
+  if (odometry_sent_ != kNever && now != odometry_sent_ &&
+      (flight.state != last_odometry_.flight || flight.fault != last_odometry_.fault ||
+       (flight.state != msg::UavFlight::kInControl &&
+        now - odometry_sent_ >= std::chrono::milliseconds(200)))) {
+    last_odometry_.flight = flight.state;
+    last_odometry_.fault = flight.fault;
+    (void)transport_.publish(last_odometry_);
+    odometry_sent_ = now;
   }
   std::array<hal::RelativePoseDetection, limits::kMaxRpeDetectionsPerFrame> detections;
   const std::size_t n = camera_.poll(detections);

@@ -128,6 +128,9 @@ void UgvNavTask::read_relative_poses(TimePoint now) {
     if (od.flight != uav_flight_ && od.flight != msg::UavFlight::kInControl)
       ++health_.uav_unavailable;
     uav_flight_ = od.flight;
+    // A repeat (the UAV without fresh odometry) carries the flight state alone.
+    if (od.stamp == last_uav_stamp_) continue;
+    last_uav_stamp_ = od.stamp;
     if (!synchronised) {
       ++health_.unsynchronised;
       continue;

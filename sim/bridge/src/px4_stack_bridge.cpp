@@ -118,6 +118,7 @@ void Px4StackBridge::step(TimePoint now) {
   hal::UavState st;
   while (world_.uav().poll(st)) {
     position_ = st.pose.p;
+    publish_lio(st);  // FAST-LIO is its own process: PX4's silence does not stop it
     if (silent_) continue;
     ++counters_.odometry;
     px4_msgs_msg_dds__VehicleOdometry_ o{};
@@ -138,20 +139,12 @@ void Px4StackBridge::step(TimePoint now) {
     o.velocity_frame = 1;
     o.angular_velocity[2] = static_cast<float>(-st.yaw_rate_radps);  // FRD z is down
     (void)dds_write(odometry_out_, &o);
-
-    nav_msgs_msg_dds__Odometry_ lio{};
-    lio.header.stamp = ros_time(st.stamp);
-    lio.header.frame_id = const_cast<char*>("camera_init");
-    lio.child_frame_id = const_cast<char*>("body");
-    lio.pose.pose.position = {st.pose.p.x(), st.pose.p.y(), st.pose.p.z()};
-    lio.pose.pose.orientation = {st.pose.q.x(), st.pose.q.y(), st.pose.q.z(), st.pose.q.w()};
-    (void)dds_write(lio_out_, &lio);  // FAST-LIO leaves the twist empty
   }
   vehicle_->step(now, position_);
 
   // The Livox driver's cloud: returns only, in the sensor frame.
   hal::LidarScanView scan;
-  if (world_.uav_lidar().poll(scan) && !silent_) {
+  if (world_.uav_lidar().poll(scan)) {  // the Livox driver: not PX4's
     const std::size_t n = std::min(scan.points.size(), limits::kMaxLidarPoints);
     for (std::size_t i = 0; i < n; ++i) {
       std::uint8_t* p = cloud_.data() + i * kLivoxPointStep;
@@ -184,6 +177,16 @@ void Px4StackBridge::step(TimePoint now) {
     if (dds_write(cloud_out_, &c) >= 0) ++counters_.clouds;
   }
   publish_status(now);
+}
+
+void Px4StackBridge::publish_lio(const hal::UavState& st) {
+  nav_msgs_msg_dds__Odometry_ lio{};
+  lio.header.stamp = ros_time(st.stamp);
+  lio.header.frame_id = const_cast<char*>("camera_init");
+  lio.child_frame_id = const_cast<char*>("body");
+  lio.pose.pose.position = {st.pose.p.x(), st.pose.p.y(), st.pose.p.z()};
+  lio.pose.pose.orientation = {st.pose.q.x(), st.pose.q.y(), st.pose.q.z(), st.pose.q.w()};
+  (void)dds_write(lio_out_, &lio);  // FAST-LIO leaves the twist empty
 }
 
 void Px4StackBridge::publish_status(TimePoint now) {

@@ -14,8 +14,9 @@ std::int16_t mm(float v) {
 }
 }  // namespace
 
-WorldBridge::WorldBridge(hal::sim::SimLink& link, SimWorld& world, bool with_uav)
-    : link_(link), world_(world), with_uav_(with_uav) {
+WorldBridge::WorldBridge(hal::sim::SimLink& link, SimWorld& world, bool with_uav,
+                         bool uav_camera_only)
+    : link_(link), world_(world), with_uav_(with_uav), uav_camera_only_(uav_camera_only) {
   xyz_mm_.reserve(std::size_t{3} * 2 * limits::kMaxLidarPoints);
 }
 
@@ -52,7 +53,37 @@ void WorldBridge::step() {
     }
   }
   if (!with_uav_) return;
+  if (!uav_camera_only_) fly_uav();
 
+  // The camera's newest frame.
+  hal::RelativePoseDetection dets[limits::kMaxRpeDetectionsPerFrame];
+  const std::size_t n = world_.uav_camera().poll(dets);
+  if (n > 0) {
+    colag_sim_RpeDetection out[limits::kMaxRpeDetectionsPerFrame];
+    colag_sim_RpeFrame frame{};
+    frame.stamp_ns = to_nanoseconds(dets[0].stamp);
+    for (std::size_t i = 0; i < n; ++i) {
+      out[i] = {};
+      out[i].ugv_id = dets[i].ugv_id;
+      for (int k = 0; k < 3; ++k)
+        out[i].position_m[k] = dets[i].ugv_in_uav.p[k];
+      out[i].orientation_wxyz[0] = dets[i].ugv_in_uav.q.w();
+      out[i].orientation_wxyz[1] = dets[i].ugv_in_uav.q.x();
+      out[i].orientation_wxyz[2] = dets[i].ugv_in_uav.q.y();
+      out[i].orientation_wxyz[3] = dets[i].ugv_in_uav.q.z();
+      for (int k = 0; k < 16; ++k)
+        out[i].covariance[k] = dets[i].covariance(k / 4, k % 4);
+    }
+    frame.detections._buffer = out;
+    frame.detections._length = static_cast<std::uint32_t>(n);
+    frame.detections._maximum = frame.detections._length;
+    frame.detections._release = false;
+    if (dds_write(link_.writer(hal::sim::SimTopic::kRpe), &frame) >= 0) ++counters_.rpe_frames;
+  }
+}
+
+// The simulated flight controller, odometry and LiDAR (robot.hal sim).
+void WorldBridge::fly_uav() {
   // Setpoints -> the UAV body.
   while (hal::dds::take_one<colag_sim_FlightSetpoint>(
       link_.reader(hal::sim::SimTopic::kSetpoint), [&](const auto& s) {
@@ -106,31 +137,6 @@ void WorldBridge::step() {
       ++counters_.scans;
       counters_.scan_bytes += 2 * xyz_mm_.size();
     }
-  }
-  // The camera's newest frame.
-  hal::RelativePoseDetection dets[limits::kMaxRpeDetectionsPerFrame];
-  const std::size_t n = world_.uav_camera().poll(dets);
-  if (n > 0) {
-    colag_sim_RpeDetection out[limits::kMaxRpeDetectionsPerFrame];
-    colag_sim_RpeFrame frame{};
-    frame.stamp_ns = to_nanoseconds(dets[0].stamp);
-    for (std::size_t i = 0; i < n; ++i) {
-      out[i] = {};
-      out[i].ugv_id = dets[i].ugv_id;
-      for (int k = 0; k < 3; ++k)
-        out[i].position_m[k] = dets[i].ugv_in_uav.p[k];
-      out[i].orientation_wxyz[0] = dets[i].ugv_in_uav.q.w();
-      out[i].orientation_wxyz[1] = dets[i].ugv_in_uav.q.x();
-      out[i].orientation_wxyz[2] = dets[i].ugv_in_uav.q.y();
-      out[i].orientation_wxyz[3] = dets[i].ugv_in_uav.q.z();
-      for (int k = 0; k < 16; ++k)
-        out[i].covariance[k] = dets[i].covariance(k / 4, k % 4);
-    }
-    frame.detections._buffer = out;
-    frame.detections._length = static_cast<std::uint32_t>(n);
-    frame.detections._maximum = frame.detections._length;
-    frame.detections._release = false;
-    if (dds_write(link_.writer(hal::sim::SimTopic::kRpe), &frame) >= 0) ++counters_.rpe_frames;
   }
 }
 

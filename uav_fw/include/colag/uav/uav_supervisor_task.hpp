@@ -187,6 +187,8 @@ class UavSupervisorTask {
 
   ClockServer clock_server_;
   hal::FlightStatus flight_status_;
+  msg::UavOdometry last_odometry_;  // the last sample sent, repeated for the flight state
+  TimePoint odometry_sent_ = kNever;
   hal::UavState state_;
   bool have_state_ = false;
   TimePoint last_control_{};

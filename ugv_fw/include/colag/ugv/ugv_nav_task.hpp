@@ -159,6 +159,7 @@ class UgvNavTask {
   msg::BlockedReason blocked_reason_ = msg::BlockedReason::kNone;  // set with mode_
   bool fault_ = false;
   msg::UavFlight uav_flight_ = msg::UavFlight::kInControl;  // as the UAV's last sample said
+  TimePoint last_uav_stamp_ = kNever;                       // its stamp (fleet time)
   bool stopped_for_support_ = false;
   bool awaiting_fix_ = false;  // at the goal by its estimate, not sure enough to have arrived
   bool stopped_for_robot_ = false;

@@ -31,9 +31,11 @@ inline constexpr std::uint8_t kAckTemporarilyRejected = 1;
 inline constexpr std::uint8_t kAckInProgress = 5;
 
 struct OffboardConfig {
-  Duration prime_time = std::chrono::seconds(1);              // stream before asking for offboard
-  Duration silence_timeout = std::chrono::milliseconds(500);  // nothing at all from PX4
-  Duration status_timeout = std::chrono::seconds(2);          // no VehicleStatus
+  Duration prime_time = std::chrono::seconds(1);  // stream before asking for offboard
+  // Nothing at all from PX4 (its odometry alone comes at 50-100 Hz): short, so that the UGVs
+  // stand still within a second of losing it (this, one UAV sample, their braking ~0.5 s).
+  Duration silence_timeout = std::chrono::milliseconds(300);
+  Duration status_timeout = std::chrono::seconds(2);  // no VehicleStatus
   Duration ack_timeout = std::chrono::seconds(1);
   int command_attempts = 5;                            // per command, counting the first
   Duration confirm_timeout = std::chrono::seconds(5);  // accepted, but status never shows it

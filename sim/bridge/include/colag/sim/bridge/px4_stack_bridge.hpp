@@ -44,7 +44,8 @@ class Px4StackBridge {
   // drivers publish.
   void step(TimePoint now);
 
-  // Faults: PX4 (the agent, the link) falls silent; PX4 fails safe on its own.
+  // Faults: PX4 (the agent, the link) falls silent (FAST-LIO and the Livox driver go on: other
+  // processes); PX4 fails safe on its own.
   void set_silent(bool silent) { silent_ = silent; }
   void fail_safe();
 
@@ -53,6 +54,7 @@ class Px4StackBridge {
 
  private:
   void publish_status(TimePoint now);
+  void publish_lio(const hal::UavState& st);
 
   SimWorld& world_;
   Px4StackConfig config_;

@@ -21,15 +21,21 @@ struct BridgeCounters {
 
 class WorldBridge {
  public:
-  WorldBridge(hal::sim::SimLink& link, SimWorld& world, bool with_uav);
+  // `uav_camera_only`: the UAV flies on its flight stack's wire formats (Px4StackBridge): only
+  // its camera (our own device) stays on the sim link.
+  WorldBridge(hal::sim::SimLink& link, SimWorld& world, bool with_uav,
+              bool uav_camera_only = false);
   // Call at least every control period (10 ms): frames both ways, then the UAV's data.
   void step();
   const BridgeCounters& counters() const { return counters_; }
 
  private:
+  void fly_uav();
+
   hal::sim::SimLink& link_;
   SimWorld& world_;
   bool with_uav_;
+  bool uav_camera_only_;
   std::vector<std::int16_t> xyz_mm_;  // scan staging, sized once
   BridgeCounters counters_;
 };
