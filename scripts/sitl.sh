@@ -5,7 +5,8 @@
 #   scripts/sitl.sh [--ugvs N] [--scenario sparse|dense] [--seed S] [--max-time S]
 #                   [--world ideal|field|FILE] [--json OUT] [--netns] [--loss PCT] [--domain D] [--build DIR]
 #                   [--time-scale X] [--kill-ugv I@T [--restart-after S]]
-#                   [--uav-stack sim|px4 [--px4-release R] [--px4-silent-at T | --px4-failsafe-at T]]
+#                   [--uav-stack sim|px4 [--px4-release R] [--px4-silent-at T | --px4-failsafe-at T |
+#                    --px4-pilot-at T]]
 # Waits for the mission to end, writes the metrics JSON (colag_sim's schema; default
 # build/sitl/run-<pid>/metrics.json), stops every process by PID, prints a summary, and exits 0 when
 # every UGV reached its goal with no collision (1 otherwise, 2 on a usage or set-up error, 77
@@ -30,8 +31,9 @@
 #               PX4's uXRCE-DDS agent (px4_msgs, release --px4-release, default 1.16), FAST-LIO's
 #               /Odometry and the Livox driver's /livox/lidar on the sim link's domain (D + 1);
 #               the UAV takes off from the ground through the offboard protocol. Faults:
-#               --px4-silent-at T (the agent falls silent) or --px4-failsafe-at T (PX4 fails
-#               safe): every UGV stops within a second, uav.log says why.
+#               --px4-silent-at T (the agent falls silent), --px4-failsafe-at T (PX4 fails
+#               safe), --px4-pilot-at T (a pilot switches to position mode): every UGV must
+#               stop within a second and uav.log say why.
 # Logs and configurations: build/sitl/run-<pid>/.
 set -euo pipefail
 caller=$PWD
@@ -40,7 +42,7 @@ cd "$(dirname "$0")/.."
 ugvs=3 scenario=dense seed=1 max_time=400 json="" netns=0 loss=0 scale=1
 build=build/host domain="" kill_ugv="" restart_after="" world_name=ideal
 uav_stack=sim px4_release=1.16 px4_fault=()
-usage() { sed -n '2,34p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
+usage() { sed -n '2,36p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
 while (($#)); do
   case "$1" in
     --ugvs) ugvs=$2; shift 2 ;;
@@ -58,7 +60,7 @@ while (($#)); do
     --restart-after) restart_after=$2; shift 2 ;;
     --uav-stack) uav_stack=$2; shift 2 ;;
     --px4-release) px4_release=$2; shift 2 ;;
-    --px4-silent-at|--px4-failsafe-at) px4_fault=("$1" "$2"); shift 2 ;;
+    --px4-silent-at|--px4-failsafe-at|--px4-pilot-at) px4_fault=("$1" "$2"); shift 2 ;;
     *) usage ;;
   esac
 done

@@ -111,13 +111,17 @@ void print_uav_sensors(const sim::SimWorldConfig& wc, const sim::Px4StackConfig*
 }
 
 // colag_world's flight stack (--uav-stack px4), and the faults it can play.
-// After a fault it measures how long the UGVs take to stand still (the firmware's promise: within
-// a second, since the UAV no longer supports them and may come down anywhere).
+// The PX4 fault to play, if any (one per run).
+enum class Px4Fault : std::uint8_t { kNone, kSilent, kFailsafe, kPilot };
+
+// colag_world's flight stack (--uav-stack px4) and the fault it plays. After the fault it measures
+// how long the UGVs take to stand still (the firmware's promise: within a second, since the UAV
+// no longer supports them and may come down anywhere).
 class Px4StackStep final : public platform::Task {
  public:
-  Px4StackStep(sim::Px4StackBridge& bridge, const sim::SimWorld& world, double silent_at_s,
-               double failsafe_at_s)
-      : bridge_(bridge), world_(world), silent_at_s_(silent_at_s), failsafe_at_s_(failsafe_at_s) {}
+  Px4StackStep(sim::Px4StackBridge& bridge, const sim::SimWorld& world, Px4Fault fault,
+               double fault_at_s)
+      : bridge_(bridge), world_(world), fault_(fault), fault_at_s_(fault_at_s) {}
   const char* name() const override { return "px4_stack"; }
   Status init(TimePoint now) override {
     start_ = now;
@@ -125,38 +129,45 @@ class Px4StackStep final : public platform::Task {
   }
   void step(TimePoint now) override {
     const double t = to_seconds(now - start_);
-    if (silent_at_s_ >= 0.0 && t >= silent_at_s_ && !silent_) {
-      silent_ = true;
-      bridge_.set_silent(true);
-      std::printf("colag_world: PX4 falls silent at %.1f s\n", t);
-    }
-    if (failsafe_at_s_ >= 0.0 && t >= failsafe_at_s_ && !failsafe_) {
-      failsafe_ = true;
-      bridge_.fail_safe();
-      std::printf("colag_world: PX4 fails safe (holds) at %.1f s\n", t);
+    if (fault_ != Px4Fault::kNone && !injected_ && t >= fault_at_s_) {
+      injected_ = true;
+      switch (fault_) {
+        case Px4Fault::kSilent:
+          bridge_.set_silent(true);
+          std::printf("colag_world: PX4 falls silent at %.1f s\n", t);
+          break;
+        case Px4Fault::kFailsafe:
+          bridge_.fail_safe();
+          std::printf("colag_world: PX4 fails safe (holds) at %.1f s\n", t);
+          break;
+        case Px4Fault::kPilot:
+          bridge_.pilot_takes_over();
+          std::printf("colag_world: a pilot switches PX4 to position mode at %.1f s\n", t);
+          break;
+        case Px4Fault::kNone:
+          break;
+      }
     }
     bridge_.step(now);
-    if ((silent_ || failsafe_) && !reported_) {
-      const double since =
-          t - std::max(silent_ ? silent_at_s_ : -1.0, failsafe_ ? failsafe_at_s_ : -1.0);
-      bool still = true;
-      for (int i = 0; i < world_.ugv_count(); ++i)
-        still = still && std::abs(world_.ugv(i).speed_mps()) < ugv::kStillSpeed_mps;
-      if (still || since > 5.0) {
-        reported_ = true;
-        std::printf(still ? "colag_world: every UGV stood still %.2f s after PX4's fault\n"
-                          : "colag_world: UGVs still moving %.2f s after PX4's fault\n",
-                    since);
-      }
+    if (!injected_ || reported_) return;
+    const double since = t - fault_at_s_;
+    bool still = true;
+    for (int i = 0; i < world_.ugv_count(); ++i)
+      still = still && std::abs(world_.ugv(i).speed_mps()) < ugv::kStillSpeed_mps;
+    if (still || since > 5.0) {
+      reported_ = true;
+      std::printf(still ? "colag_world: every UGV stood still %.2f s after PX4's fault\n"
+                        : "colag_world: UGVs still moving %.2f s after PX4's fault\n",
+                  since);
     }
   }
 
  private:
   sim::Px4StackBridge& bridge_;
   const sim::SimWorld& world_;
-  double silent_at_s_, failsafe_at_s_;
-  bool reported_ = false;
-  bool silent_ = false, failsafe_ = false;
+  Px4Fault fault_;
+  double fault_at_s_;
+  bool injected_ = false, reported_ = false;
   TimePoint start_{};
 };
 
@@ -337,7 +348,7 @@ int run(int argc, char** argv) {
   std::string world_name = "ideal";
   std::string uav_stack = "sim";
   std::string px4_release = "1.16";
-  double px4_silent_at = -1.0, px4_failsafe_at = -1.0;
+  double px4_silent_at = -1.0, px4_failsafe_at = -1.0, px4_pilot_at = -1.0;
   app.add_option("--scenario", cfg.scenario, "sparse | dense")
       ->check(CLI::IsMember({"sparse", "dense", "pillars"}));
   app.add_option("--map", cfg.map_file, "a PCD map instead of a generated scenario");
@@ -374,6 +385,9 @@ int run(int argc, char** argv) {
   app.add_option("--px4-failsafe-at", px4_failsafe_at,
                  "fault: PX4 fails safe (holds, failsafe flag) at this mission time, s")
       ->check(sim::positive_up_to(1e6));
+  app.add_option("--px4-pilot-at", px4_pilot_at,
+                 "fault: a pilot switches PX4 to position mode at this mission time, s")
+      ->check(sim::positive_up_to(1e6));
   app.add_flag("--print-uav-sensors", print_sensors,
                "print the uav.yaml sections describing the world's UAV LiDAR and camera, exit");
   app.add_flag("--quiet", quiet, "only errors");
@@ -388,10 +402,21 @@ int run(int argc, char** argv) {
   }
   const sim::SimWorldConfig wc = mission::sim_world_config(cfg);
   const bool px4 = uav_stack == "px4";
-  if ((px4_silent_at >= 0.0 || px4_failsafe_at >= 0.0) && !px4) {
-    std::fprintf(stderr, "colag_world: --px4-silent-at / --px4-failsafe-at need --uav-stack px4\n");
+  const int faults = (px4_silent_at >= 0.0 ? 1 : 0) + (px4_failsafe_at >= 0.0 ? 1 : 0) +
+                     (px4_pilot_at >= 0.0 ? 1 : 0);
+  if (faults > 0 && !px4) {
+    std::fprintf(stderr, "colag_world: PX4 faults need --uav-stack px4\n");
     return 2;
   }
+  if (faults > 1) {
+    std::fprintf(stderr, "colag_world: one PX4 fault per run\n");
+    return 2;
+  }
+  const Px4Fault fault = px4_silent_at >= 0.0     ? Px4Fault::kSilent
+                         : px4_failsafe_at >= 0.0 ? Px4Fault::kFailsafe
+                         : px4_pilot_at >= 0.0    ? Px4Fault::kPilot
+                                                  : Px4Fault::kNone;
+  const double fault_at = std::max({px4_silent_at, px4_failsafe_at, px4_pilot_at});
   const std::uint32_t sim_domain = hal::sim::sim_domain_for(domain);
   sim::Px4StackConfig stack;
   stack.dds_domain = sim_domain;  // beside the sim link: the robots' domain sees none of it
@@ -443,7 +468,7 @@ int run(int argc, char** argv) {
       return 1;
     }
   }
-  Px4StackStep px4_step(px4_bridge, world, px4_silent_at, px4_failsafe_at);
+  Px4StackStep px4_step(px4_bridge, world, fault, fault_at);
   platform::dds::DdsTransport dds;
   platform::dds::DdsConfig dds_cfg;
   dds_cfg.domain_id = domain;

@@ -79,6 +79,10 @@ void Px4StackBridge::fail_safe() {
   vehicle_->fail_safe(position_);
 }
 
+void Px4StackBridge::pilot_takes_over() {
+  vehicle_->pilot_takes_over(position_);
+}
+
 void Px4StackBridge::step(TimePoint now) {
   // What the firmware sends PX4 (a silent agent drops it: nothing reaches PX4 either).
   while (take_one<px4_msgs_msg_dds__OffboardControlMode_>(offboard_in_, [&](const auto& m) {

@@ -62,6 +62,12 @@ void Px4Vehicle::fail_safe(const Vec3& position) {
   hold(position);
 }
 
+void Px4Vehicle::pilot_takes_over(const Vec3& position) {
+  nav_state_ = kNavPosition;
+  holding_ = false;
+  hold(position);
+}
+
 void Px4Vehicle::step(TimePoint now, const Vec3& position) {
   hal::FlightSetpoint out;
   out.stamp = now;

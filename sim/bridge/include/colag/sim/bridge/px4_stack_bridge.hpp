@@ -45,9 +45,10 @@ class Px4StackBridge {
   void step(TimePoint now);
 
   // Faults: PX4 (the agent, the link) falls silent (FAST-LIO and the Livox driver go on: other
-  // processes); PX4 fails safe on its own.
+  // processes); PX4 fails safe on its own; a pilot switches it to position mode.
   void set_silent(bool silent) { silent_ = silent; }
   void fail_safe();
+  void pilot_takes_over();
 
   const Px4Vehicle& vehicle() const { return *vehicle_; }
   const Px4StackCounters& counters() const { return counters_; }

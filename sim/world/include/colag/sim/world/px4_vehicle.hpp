@@ -27,7 +27,7 @@ struct Px4VehicleConfig {
 class Px4Vehicle {
  public:
   // PX4's values (VehicleStatus, VehicleCommandAck).
-  static constexpr std::uint8_t kNavLoiter = 4, kNavOffboard = 14, kNavLand = 18;
+  static constexpr std::uint8_t kNavPosition = 2, kNavLoiter = 4, kNavOffboard = 14, kNavLand = 18;
   static constexpr std::uint8_t kAccepted = 0, kTemporarilyRejected = 1, kDenied = 2,
                                 kUnsupported = 3;
 
@@ -42,6 +42,8 @@ class Px4Vehicle {
   void step(TimePoint now, const Vec3& position);
   // A failsafe of its own (a battery, a geofence): it holds and says so.
   void fail_safe(const Vec3& position);
+  // A pilot takes over: position mode (it holds where it is), no failsafe.
+  void pilot_takes_over(const Vec3& position);
 
   bool armed() const { return armed_; }
   std::uint8_t nav_state() const { return nav_state_; }
