@@ -227,7 +227,19 @@ in_ns "$hub" "$build/bin/colag_world" --scenario "$scenario" --ugvs "$ugvs" --se
 world=$!
 pids+=("$world")
 in_ns "${ns_of[0]}" "$build/bin/uav_fw" --config "$run/uav.yaml" --time-scale "$scale" >"$run/uav.log" 2>&1 &
-pids+=($!)
+uav=$!
+pids+=("$uav")
+if [[ $uav_stack == px4 ]]; then
+  # On PX4 the mission ends with a landing: once the world says the mission is over (its PX4
+  # stays up), uav_fw is stopped as an operator would stop it, and lands.
+  (
+    while kill -0 "$world" 2>/dev/null && ! grep -q "waiting for the UAV to land" "$run/world.log"; do
+      sleep 0.2
+    done
+    kill -INT "$uav" 2>/dev/null || true
+  ) &
+  lander=$!
+fi
 for ((i = 0; i < ugvs; ++i)); do
   in_ns "${ns_of[$((i + 1))]}" "$build/bin/ugv_fw" --config "$run/ugv$i.yaml" --time-scale "$scale" >"$run/ugv$i.log" 2>&1 &
   pids+=($!)
@@ -292,6 +304,11 @@ if ((${#px4_fault[@]})); then
   fi
   echo "sitl: FAIL: the UGVs did not all stop within 1 s of PX4's fault, or a collision" >&2
   exit 1
+fi
+if [[ $uav_stack == px4 ]]; then
+  landed=$(grep -m1 'uav_fw: landed and disarmed' "$run/uav.log" || true)
+  echo "sitl: the UAV at the end: ${landed:-not landed (see $run/uav.log)}"
+  [ -n "$landed" ] || { echo "sitl: FAIL: uav_fw did not land the UAV through PX4" >&2; exit 1; }
 fi
 if grep -q '"all_reached": true' "$json" && grep -q '"collisions": 0' "$json"; then
   echo "sitl: PASS: every UGV reached its goal, no collision"

@@ -19,6 +19,7 @@
 #include <fstream>
 #include <optional>
 #include <string>
+#include <thread>
 #include <tuple>
 #include <vector>
 
@@ -170,6 +171,28 @@ class Px4StackStep final : public platform::Task {
   bool injected_ = false, reported_ = false;
   TimePoint start_{};
 };
+
+// On PX4 the mission ends with a landing: the world and its PX4 run on (scripts/sitl.sh stops
+// uav_fw when it reads the first line, and uav_fw lands) until PX4 disarms, at most 60 s.
+void land_after_mission(const hal::Clock& clock, sim::SimWorld& world, Px4StackStep& px4_step,
+                        const sim::Px4StackBridge& px4) {
+  std::printf("colag_world: mission over; waiting for the UAV to land\n");
+  std::fflush(stdout);
+  const TimePoint start = clock.now();
+  TimePoint last = start;
+  while (px4.vehicle().armed() && clock.now() - start < std::chrono::seconds(60)) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    const TimePoint now = clock.now();
+    if (now - last < std::chrono::milliseconds(10)) continue;
+    world.step(now, std::min(to_seconds(now - last), 0.1));
+    px4_step.step(now);
+    last = now;
+  }
+  std::printf(px4.vehicle().armed()
+                  ? "colag_world: the UAV did not land within 60 s\n"
+                  : "colag_world: the UAV landed and PX4 disarmed %.1f s after the mission\n",
+              to_seconds(clock.now() - start));
+}
 
 class BridgeStep final : public platform::Task {
  public:
@@ -575,6 +598,8 @@ int run(int argc, char** argv) {
     }
     if (!json_path.empty()) std::printf("colag_world: metrics in %s\n", json_path.c_str());
   }
+  if (px4 && fault == Px4Fault::kNone)
+    land_after_mission(exec.clock(), world, px4_step, px4_bridge);
   return 0;
 }
 
