@@ -7,6 +7,7 @@
 #include <functional>
 #include <thread>
 
+#include "allocation_counter.hpp"
 #include "colag/hal/px4/px4_flight_controller.hpp"
 #include "colag/hal/ros2/ros2_devices.hpp"
 #include "colag/hal/scripted/scripted_devices.hpp"
@@ -171,4 +172,31 @@ TEST(Px4Stack, AReleaseMismatchIsReportedByName) {
 TEST(Px4Stack, PointsToPx4V115WhenConfiguredSo) {
   Rig rig(Px4Release::kV115, Px4Release::kV115);
   ASSERT_TRUE(rig.run_until([&] { return rig.px4.sequencer().state() == State::kInControl; }));
+}
+
+// The flight controller's path at the control rate (status, acks and odometry in; heartbeat and
+// setpoint out) allocates nothing on the task's thread once in control (Cyclone's own threads
+// allocate by design).
+TEST(Px4Stack, InControlTheDriverAllocatesNothingOnTheTasksThread) {
+  Rig rig;
+  ASSERT_TRUE(rig.run_until([&] { return rig.px4.sequencer().state() == State::kInControl; }));
+  std::uint64_t allocations = 0;
+  for (int i = 0; i < 100; ++i) {
+    rig.clock.advance(20ms);
+    rig.world.step(rig.clock.now(), 0.02);
+    rig.bridge.step(rig.clock.now());
+    std::this_thread::sleep_for(1ms);
+    test::AllocationCounter counter(test::AllocationCounter::Threads::kThisOne);
+    const hal::FlightStatus s = rig.px4.update(rig.clock.now());
+    hal::FlightSetpoint sp;
+    sp.stamp = rig.clock.now();
+    sp.position_m = Vec3(0, 0, 1.5);
+    (void)rig.px4.send_setpoint(sp);
+    hal::UavState st;
+    (void)rig.px4.poll(st);
+    allocations += counter.count();
+    ASSERT_EQ(s.state, msg::UavFlight::kInControl);
+  }
+  EXPECT_EQ(allocations, 0u);
+  EXPECT_GT(rig.px4.counters().odometry, 50u);
 }

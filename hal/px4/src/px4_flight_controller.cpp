@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <utility>
 
 #include "colag/common/frames.hpp"
 #include "colag/hal/dds/take_one.hpp"
@@ -79,7 +80,83 @@ bool Px4FlightController::init(const Px4DriverConfig& config, std::string& error
   }
   publications_ =
       dds_create_reader(dds_.participant(), DDS_BUILTIN_TOPIC_DCPSPUBLICATION, nullptr, nullptr);
+  writer_ = std::thread([this] { write_loop(); });
   return true;
+}
+
+Px4FlightController::~Px4FlightController() {
+  if (writer_.joinable()) {
+    {
+      const std::lock_guard lock(outbox_.mutex);
+      outbox_.stop = true;
+    }
+    outbox_.wake.notify_one();
+    writer_.join();
+  }
+}
+
+Px4Counters Px4FlightController::counters() const {
+  Px4Counters c = counters_;
+  c.setpoints = setpoints_.load();
+  c.heartbeats = heartbeats_.load();
+  c.commands = commands_.load();
+  c.write_errors = write_errors_.load();
+  return c;
+}
+
+// The writer thread: whatever the control loop left in the outbox, to DDS.
+void Px4FlightController::write_loop() {
+  for (;;) {
+    bool setpoint = false, heartbeat = false;
+    std::array<float, 11> sp{};
+    std::array<Px4Command, 4> commands{};
+    std::size_t n = 0;
+    {
+      std::unique_lock lock(outbox_.mutex);
+      outbox_.wake.wait(lock, [&] {
+        return outbox_.stop || outbox_.setpoint_due || outbox_.heartbeat_due ||
+               outbox_.command_count > 0;
+      });
+      if (outbox_.stop) return;
+      setpoint = std::exchange(outbox_.setpoint_due, false);
+      heartbeat = std::exchange(outbox_.heartbeat_due, false);
+      sp = outbox_.setpoint;
+      n = std::exchange(outbox_.command_count, 0);
+      commands = outbox_.commands;
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      px4_msgs_msg_dds__VehicleCommand_ m{};
+      m.timestamp = 0;
+      m.param1 = commands[i].param1;
+      m.param2 = commands[i].param2;
+      m.command = commands[i].command;
+      m.target_system = config_.target_system;
+      m.target_component = config_.target_component;
+      m.source_system = config_.source_system;
+      m.source_component = config_.source_component;
+      m.from_external = true;
+      ++(dds_write(command_writer_, &m) < 0 ? write_errors_ : commands_);
+    }
+    if (heartbeat) {
+      px4_msgs_msg_dds__OffboardControlMode_ m{};
+      m.timestamp = 0;
+      m.position = true;  // position control; velocity and acceleration are its feed-forward
+      ++(dds_write(offboard_writer_, &m) < 0 ? write_errors_ : heartbeats_);
+    }
+    if (setpoint) {
+      px4_msgs_msg_dds__TrajectorySetpoint_ m{};
+      m.timestamp = 0;  // PX4 stamps it on arrival: no clock of PX4's needed
+      for (std::size_t i = 0; i < 3; ++i) {
+        m.position[i] = sp[i];
+        m.velocity[i] = sp[3 + i];
+        m.acceleration[i] = sp[6 + i];
+        m.jerk[i] = std::numeric_limits<float>::quiet_NaN();  // not controlled
+      }
+      m.yaw = sp[9];
+      m.yawspeed = sp[10];
+      ++(dds_write(setpoint_writer_, &m) < 0 ? write_errors_ : setpoints_);
+    }
+  }
 }
 
 Status Px4FlightController::send_setpoint(const FlightSetpoint& sp) {
@@ -92,22 +169,19 @@ Status Px4FlightController::send_setpoint(const FlightSetpoint& sp) {
     return {Errc::kInvalidArgument, "PX4: setpoint not finite"};
   seq_.on_setpoint(sp.stamp);
   if (!seq_.streaming(sp.stamp)) return Status::ok();  // held until PX4 is ours
-  px4_msgs_msg_dds__TrajectorySetpoint_ m{};
-  m.timestamp = 0;  // PX4 stamps it on arrival: no clock of PX4's needed
-  const float nan = std::numeric_limits<float>::quiet_NaN();
-  for (int i = 0; i < 3; ++i) {
-    m.position[i] = static_cast<float>(p[i]);
-    m.velocity[i] = static_cast<float>(v[i]);
-    m.acceleration[i] = static_cast<float>(a[i]);
-    m.jerk[i] = nan;  // not controlled
+  {
+    const std::lock_guard lock(outbox_.mutex);
+    for (std::size_t i = 0; i < 3; ++i) {
+      outbox_.setpoint[i] = static_cast<float>(p[static_cast<int>(i)]);
+      outbox_.setpoint[3 + i] = static_cast<float>(v[static_cast<int>(i)]);
+      outbox_.setpoint[6 + i] = static_cast<float>(a[static_cast<int>(i)]);
+    }
+    outbox_.setpoint[9] =
+        static_cast<float>(frames::enu_yaw_to_ned(sp.yaw_rad - yaw_of(config_.origin.q)));
+    outbox_.setpoint[10] = std::numeric_limits<float>::quiet_NaN();
+    outbox_.setpoint_due = true;
   }
-  m.yaw = static_cast<float>(frames::enu_yaw_to_ned(sp.yaw_rad - yaw_of(config_.origin.q)));
-  m.yawspeed = nan;
-  if (dds_write(setpoint_writer_, &m) < 0) {
-    ++counters_.write_errors;
-    return {Errc::kUnavailable, "PX4: setpoint write failed"};
-  }
-  ++counters_.setpoints;
+  outbox_.wake.notify_one();
   return Status::ok();
 }
 
@@ -122,7 +196,11 @@ FlightStatus Px4FlightController::update(TimePoint now) {
   if (seq_.step(now, c)) send_command(c);
   if (seq_.streaming(now) && elapsed(now, last_heartbeat_, config_.heartbeat_period)) {
     last_heartbeat_ = now;
-    publish_heartbeat();
+    {
+      const std::lock_guard lock(outbox_.mutex);
+      outbox_.heartbeat_due = true;
+    }
+    outbox_.wake.notify_one();
   }
   report(now);
   return seq_.status();
@@ -218,32 +296,15 @@ void Px4FlightController::check_release() {
 }
 
 void Px4FlightController::send_command(const Px4Command& c) {
-  px4_msgs_msg_dds__VehicleCommand_ m{};
-  m.timestamp = 0;
-  m.param1 = c.param1;
-  m.param2 = c.param2;
-  m.command = c.command;
-  m.target_system = config_.target_system;
-  m.target_component = config_.target_component;
-  m.source_system = config_.source_system;
-  m.source_component = config_.source_component;
-  m.from_external = true;
-  if (dds_write(command_writer_, &m) < 0) {
-    ++counters_.write_errors;
-    return;
+  {
+    const std::lock_guard lock(outbox_.mutex);
+    if (outbox_.command_count == outbox_.commands.size()) {
+      ++commands_dropped_;
+      return;
+    }
+    outbox_.commands[outbox_.command_count++] = c;
   }
-  ++counters_.commands;
-}
-
-void Px4FlightController::publish_heartbeat() {
-  px4_msgs_msg_dds__OffboardControlMode_ m{};
-  m.timestamp = 0;
-  m.position = true;  // position control; velocity and acceleration are its feed-forward
-  if (dds_write(offboard_writer_, &m) < 0) {
-    ++counters_.write_errors;
-    return;
-  }
-  ++counters_.heartbeats;
+  outbox_.wake.notify_one();
 }
 
 // One line on every change of state or reason: what a user reads in the journal.

@@ -4,9 +4,17 @@
 // landing) and OdometrySource (VehicleOdometry). Everything PX4 sees is in its own frames (NED
 // world, FRD body) and its local frame; everything the firmware sees is ENU/FLU in the mission's
 // world: converted here, by frames.hpp, and by `origin` (where PX4's local frame lies in the
-// world). Steady state allocates nothing of ours: fixed-size messages, taken on loan.
+// world). The control loop allocates nothing: fixed-size messages are taken on loan, and the
+// writes (Cyclone allocates in dds_write) run on a thread of the driver's own, as the fleet
+// transport's do: the loop leaves the newest setpoint and heartbeat, and its commands, in an
+// outbox.
+#include <array>
+#include <atomic>
+#include <condition_variable>
 #include <cstdint>
+#include <mutex>
 #include <string>
+#include <thread>
 
 #include "colag/common/geometry.hpp"
 #include "colag/hal/dds/device_participant.hpp"
@@ -49,6 +57,9 @@ struct Px4Counters {
 class Px4FlightController final : public FlightController, public OdometrySource {
  public:
   Px4FlightController() = default;
+  ~Px4FlightController() override;
+  Px4FlightController(const Px4FlightController&) = delete;
+  Px4FlightController& operator=(const Px4FlightController&) = delete;
   // Creates the participant and the topics; false with `error` naming what failed.
   bool init(const Px4DriverConfig& config, std::string& error);
 
@@ -60,17 +71,30 @@ class Px4FlightController final : public FlightController, public OdometrySource
   bool poll(UavState& out) override;
 
   const OffboardSequencer& sequencer() const { return seq_; }
-  const Px4Counters& counters() const { return counters_; }
+  Px4Counters counters() const;  // a snapshot (the writer thread counts its writes)
   // Why it waits or failed, for the log: "" or a sentence (e.g. the release seen on the bus).
   const std::string& diagnosis() const { return diagnosis_; }
   const Px4DriverConfig& config() const { return config_; }
 
  private:
+  // What the control loop hands the writer thread: the newest setpoint (NED, local) and
+  // heartbeat, and the commands in order.
+  struct Outbox {
+    std::mutex mutex;
+    std::condition_variable wake;
+    bool stop = false;
+    bool setpoint_due = false;
+    std::array<float, 11> setpoint{};  // position, velocity, acceleration, yaw, yawspeed
+    bool heartbeat_due = false;
+    std::array<Px4Command, 4> commands{};
+    std::size_t command_count = 0;
+  };
+
   void read_px4(TimePoint now);
   void check_release();
   void send_command(const Px4Command& c);
-  void publish_heartbeat();
   void report(TimePoint now);
+  void write_loop();
 
   Px4DriverConfig config_;
   dds::DeviceParticipant dds_;
@@ -84,7 +108,12 @@ class Px4FlightController final : public FlightController, public OdometrySource
   bool odometry_fresh_ = false;
   OffboardSequencer::State reported_ = OffboardSequencer::State::kWaitingForPx4;
   msg::FlightFault reported_fault_ = msg::FlightFault::kNone;
-  Px4Counters counters_;
+  Px4Counters counters_;  // what the control loop counts
+  // What the writer thread counts.
+  std::atomic<std::uint64_t> setpoints_{0}, heartbeats_{0}, commands_{0}, write_errors_{0};
+  std::uint64_t commands_dropped_ = 0;  // the outbox full (never at 4 commands a protocol step)
+  Outbox outbox_;
+  std::thread writer_;
   std::string diagnosis_;
 };
 
