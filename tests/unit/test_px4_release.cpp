@@ -25,8 +25,7 @@ TEST(Px4Release, TopicNamesFollowTheReleaseAndTheNamespace) {
   EXPECT_EQ(px4_dds_topic(Px4Release::kV115, Px4Topic::kOffboardControlMode, "uav"),
             "rt/uav/fmu/in/offboard_control_mode");
   // On the bus, the other release's status topic names its release.
-  EXPECT_EQ(release_of_status_topic("rt/fmu/out/vehicle_status_v1", "").value(),
-            Px4Release::kV116);
+  EXPECT_EQ(release_of_status_topic("rt/fmu/out/vehicle_status_v1", "").value(), Px4Release::kV116);
   EXPECT_EQ(release_of_status_topic("rt/uav/fmu/out/vehicle_status", "uav").value(),
             Px4Release::kV115);
   EXPECT_FALSE(release_of_status_topic("rt/fmu/out/vehicle_odometry", ""));

@@ -108,7 +108,7 @@ bool UavBoard::land(Duration limit) {
     const hal::FlightStatus s = px4_->update(clock.now());
     const auto state = px4_->sequencer().state();
     if (state == hal::px4::OffboardSequencer::State::kLanded) return true;
-    if (s.state == msg::UavFlight::kLost) return false;  // a pilot or a failsafe has it
+    if (s.state == msg::UavFlight::kLost) return false;    // a pilot or a failsafe has it
     if (s.fault != msg::FlightFault::kNone) return false;  // NAV_LAND refused or unanswered
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
