@@ -1,11 +1,14 @@
 // CAN traffic as the UGV's wheel odometry receives it: a sequence of frames (any id, dlc, data,
-// time step) through the protocol decoder and CanWheelOdometry. Invariants: a frame that decodes
-// re-encodes to the same bytes; every frame is counted once (sample or a reject reason); every
-// odometry sample is finite, physically plausible and in time order.
+// time step) through the protocol decoder and CanWheelOdometry, and through the ODrive CAN
+// Simple decoder. Invariants: a frame that decodes re-encodes to the same bytes; every frame is
+// counted once (sample or a reject reason); every odometry sample is finite, physically
+// plausible and in time order; the ODrive decoder accepts only its node's standard-id feedback
+// of the right length.
 #include <cmath>
 #include <cstring>
 
 #include "colag/hal/can/can_wheel_odometry.hpp"
+#include "colag/hal/can/odrive_protocol.hpp"
 #include "colag/hal/can/wheel_protocol.hpp"
 #include "fuzz_input.hpp"
 
@@ -70,6 +73,16 @@ void check_roundtrip(const CanFrame& f, const can::WheelProtocolConfig& cfg) {
   COLAG_FUZZ_CHECK(can::decode(again, cfg, d) == can::DecodeError::kNone);
 }
 
+void check_odrive(const CanFrame& f, std::uint8_t node) {
+  namespace od = can::odrive;
+  od::Feedback fb;
+  if (od::decode(f, node, fb) != od::DecodeError::kNone) return;
+  COLAG_FUZZ_CHECK(!f.extended && (f.id >> 5) == node);
+  COLAG_FUZZ_CHECK(fb.command == od::Command::kHeartbeat
+                       ? f.dlc >= 7
+                       : fb.command == od::Command::kEncoderEstimates && f.dlc == 8);
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -78,13 +91,17 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   cfg.counts_id = 0x101 + (in.u8() & 3);  // a few id layouts
   can::WheelGeometry geometry;
 
-  // Pass 1: every frame through the pure codec.
+  // Pass 1: every frame through the pure codecs (ours, and ODrive's for one node).
   {
     FuzzInput copy(in.rest(), in.remaining());
     ReplayBus bus(copy);
     CanFrame f;
-    while (copy.remaining() >= 13)
-      if (bus.receive(f)) check_roundtrip(f, cfg);
+    const auto node = static_cast<std::uint8_t>(cfg.counts_id & 3);
+    while (copy.remaining() >= 13) {
+      if (!bus.receive(f)) continue;
+      check_roundtrip(f, cfg);
+      check_odrive(f, node);
+    }
   }
 
   // Pass 2: the whole sequence through the odometry, polled every few frames.
