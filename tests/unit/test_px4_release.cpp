@@ -1,6 +1,8 @@
 // The PX4 releases the driver speaks: names in the configuration, topic names on the wire.
 #include "colag/hal/px4/px4_release.hpp"
 
+#include "colag/hal/ros2/ros2_names.hpp"
+
 #include <gtest/gtest.h>
 
 using namespace colag::hal::px4;
@@ -29,4 +31,12 @@ TEST(Px4Release, TopicNamesFollowTheReleaseAndTheNamespace) {
   EXPECT_EQ(release_of_status_topic("rt/uav/fmu/out/vehicle_status", "uav").value(),
             Px4Release::kV115);
   EXPECT_FALSE(release_of_status_topic("rt/fmu/out/vehicle_odometry", ""));
+}
+
+TEST(Ros2Names, TopicsTakeTheRtPrefixAndTheirNamespace) {
+  using colag::hal::ros2::ros2_dds_topic;
+  EXPECT_EQ(ros2_dds_topic("/Odometry"), "rt/Odometry");
+  EXPECT_EQ(ros2_dds_topic("livox/lidar"), "rt/livox/lidar");
+  EXPECT_EQ(ros2_dds_topic("/uav1/", "/fmu/in/x"), "rt/uav1/fmu/in/x");
+  EXPECT_EQ(ros2_dds_topic("", "fmu/out/y"), "rt/fmu/out/y");
 }

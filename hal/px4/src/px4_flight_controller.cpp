@@ -202,7 +202,7 @@ FlightStatus Px4FlightController::update(TimePoint now) {
     }
     outbox_.wake.notify_one();
   }
-  report(now);
+  report();
   return seq_.status();
 }
 
@@ -210,7 +210,7 @@ void Px4FlightController::land(TimePoint now) {
   seq_.land(now);
   Px4Command c;
   if (seq_.step(now, c)) send_command(c);
-  report(now);
+  report();
 }
 
 bool Px4FlightController::poll(UavState& out) {
@@ -308,8 +308,7 @@ void Px4FlightController::send_command(const Px4Command& c) {
 }
 
 // One line on every change of state or reason: what a user reads in the journal.
-void Px4FlightController::report(TimePoint now) {
-  (void)now;
+void Px4FlightController::report() {
   const FlightStatus s = seq_.status();
   if (seq_.state() == reported_ && s.fault == reported_fault_) return;
   reported_ = seq_.state();

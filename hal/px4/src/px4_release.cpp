@@ -2,6 +2,8 @@
 
 #include <array>
 
+#include "colag/hal/ros2/ros2_names.hpp"
+
 namespace colag::hal::px4 {
 
 namespace {
@@ -46,16 +48,7 @@ const char* px4_topic_name(Px4Release r, Px4Topic t) {
 }
 
 std::string px4_dds_topic(Px4Release r, Px4Topic t, std::string_view ns) {
-  std::string name = "rt/";
-  while (!ns.empty() && ns.front() == '/')
-    ns.remove_prefix(1);
-  while (!ns.empty() && ns.back() == '/')
-    ns.remove_suffix(1);
-  if (!ns.empty()) {
-    name += ns;
-    name += '/';
-  }
-  return name + px4_topic_name(r, t);
+  return ros2::ros2_dds_topic(ns, px4_topic_name(r, t));
 }
 
 Result<Px4Release> release_of_status_topic(std::string_view dds_topic, std::string_view ns) {

@@ -6,13 +6,6 @@
 
 namespace colag::hal::ros2 {
 
-std::string ros2_dds_topic(const std::string& ros_topic) {
-  std::size_t i = 0;
-  while (i < ros_topic.size() && ros_topic[i] == '/')
-    ++i;
-  return "rt/" + ros_topic.substr(i);
-}
-
 bool Ros2Odometry::init(const Ros2OdometryConfig& config, std::string& error) {
   config_ = config;
   if (!dds_.init(config.dds_domain)) {
@@ -48,19 +41,19 @@ bool Ros2Odometry::poll(UavState& out) {
     const auto& ta = m.twist.twist.angular;
     const Vec3 v_child(tl.x, tl.y, tl.z), w_child(ta.x, ta.y, ta.z);
     const Quat q_child = (config_.origin.q * q.normalized()).normalized();
+    // The pose's rate of change, where the twist is empty: over a sane interval only.
+    const double dt = have_last_ ? to_seconds(s.stamp - last_.stamp) : 0.0;
+    const bool differentiate = dt > 1e-3 && dt < 0.5;
     if (all_finite(v_child) && v_child.squaredNorm() > 0.0) {
       velocity_ = q_child * v_child;
-    } else if (have_last_) {  // the pose's rate of change, smoothed over ~3 samples
-      const double dt = to_seconds(s.stamp - last_.stamp);
-      if (dt > 1e-3 && dt < 0.5) velocity_ += 0.3 * ((s.pose.p - last_.pose.p) / dt - velocity_);
+    } else if (differentiate) {  // smoothed over ~3 samples
+      velocity_ += 0.3 * ((s.pose.p - last_.pose.p) / dt - velocity_);
     }
     s.velocity_mps = velocity_;
     if (all_finite(w_child) && w_child.squaredNorm() > 0.0) {
       s.yaw_rate_radps = (q_child * w_child).z();
-    } else if (have_last_) {
-      const double dt = to_seconds(s.stamp - last_.stamp);
-      if (dt > 1e-3 && dt < 0.5)
-        s.yaw_rate_radps = wrap_angle(yaw_of(s.pose.q) - yaw_of(last_.pose.q)) / dt;
+    } else if (differentiate) {
+      s.yaw_rate_radps = wrap_angle(yaw_of(s.pose.q) - yaw_of(last_.pose.q)) / dt;
     }
     last_ = s;
     have_last_ = true;

@@ -5,6 +5,7 @@
 #include "colag/common/frames.hpp"
 #include "colag/common/limits.hpp"
 #include "colag/hal/dds/take_one.hpp"
+#include "colag/hal/ros2/ros2_names.hpp"
 #include "px4_msgs.h"
 #include "px4_msgs_v1_15.h"
 #include "ros2_msgs.h"
@@ -20,13 +21,6 @@ using hal::px4::Px4Topic;
 // livox_ros_driver2's PointCloud2 (xfer_format 0): x y z intensity (float32), tag line (uint8),
 // timestamp (float64), packed: 26 bytes a point.
 constexpr std::uint32_t kLivoxPointStep = 26;
-
-std::string ros_topic(const std::string& t) {
-  std::size_t i = 0;
-  while (i < t.size() && t[i] == '/')
-    ++i;
-  return "rt/" + t.substr(i);
-}
 
 builtin_interfaces_msg_dds__Time_ ros_time(TimePoint t) {
   const std::int64_t ns = to_nanoseconds(t);
@@ -65,8 +59,10 @@ bool Px4StackBridge::init(const Px4StackConfig& config, std::string& error) {
                          px4_msgs_msg_dds__VehicleCommandAck__desc);
   odometry_out_ = dds_.writer(px4_dds_topic(r, Px4Topic::kVehicleOdometry, ns),
                               px4_msgs_msg_dds__VehicleOdometry__desc);
-  lio_out_ = dds_.writer(ros_topic(config.odometry_topic), nav_msgs_msg_dds__Odometry__desc);
-  cloud_out_ = dds_.writer(ros_topic(config.lidar_topic), sensor_msgs_msg_dds__PointCloud2__desc);
+  lio_out_ = dds_.writer(hal::ros2::ros2_dds_topic(config.odometry_topic),
+                         nav_msgs_msg_dds__Odometry__desc);
+  cloud_out_ = dds_.writer(hal::ros2::ros2_dds_topic(config.lidar_topic),
+                           sensor_msgs_msg_dds__PointCloud2__desc);
   if (!offboard_in_ || !setpoint_in_ || !command_in_ || !status_out_ || !ack_out_ ||
       !odometry_out_ || !lio_out_ || !cloud_out_) {
     error = "PX4 stack: " + dds_.last_error();

@@ -45,9 +45,8 @@ void read_flight_stack(board::Reader& r, const YAML::Node& doc, UavBoardConfig& 
       p.release = rel.value();
     }
   }
-  int domain = 0, system = 1;
-  r.get(px4, "px4", "dds_domain", domain, 0, 232);
-  p.dds_domain = static_cast<std::uint32_t>(domain);
+  int system = 1;
+  r.get(px4, "px4", "dds_domain", p.dds_domain, 0u, 232u);  // DDS allows domain ids 0..232
   r.get(px4, "px4", "namespace", p.ns);
   r.get(px4, "px4", "system_id", system, 1, 255);
   p.target_system = static_cast<std::uint8_t>(system);
@@ -64,9 +63,8 @@ void read_flight_stack(board::Reader& r, const YAML::Node& doc, UavBoardConfig& 
     r.fail("odometry.source", "expected fast_lio (nav_msgs/Odometry) or px4 (VehicleOdometry)");
   c.odometry_from_px4 = source == "px4";
   hal::ros2::Ros2OdometryConfig& o = c.odometry;
-  domain = static_cast<int>(p.dds_domain);
-  r.get(odom, "odometry", "dds_domain", domain, 0, 232);
-  o.dds_domain = static_cast<std::uint32_t>(domain);
+  o.dds_domain = p.dds_domain;  // PX4's agent's unless said
+  r.get(odom, "odometry", "dds_domain", o.dds_domain, 0u, 232u);
   r.get(odom, "odometry", "topic", o.topic);
   (void)read_pose(r, odom, "odometry", "origin", o.origin, false);
   (void)read_pose(r, odom, "odometry", "body_to_uav", o.body_to_uav, true);
@@ -75,9 +73,8 @@ void read_flight_stack(board::Reader& r, const YAML::Node& doc, UavBoardConfig& 
 
   const YAML::Node lidar = child(doc, "lidar");
   hal::ros2::Ros2LidarConfig& l = c.lidar;
-  domain = static_cast<int>(p.dds_domain);
-  r.get(lidar, "lidar", "dds_domain", domain, 0, 232);
-  l.dds_domain = static_cast<std::uint32_t>(domain);
+  l.dds_domain = p.dds_domain;
+  r.get(lidar, "lidar", "dds_domain", l.dds_domain, 0u, 232u);
   r.get(lidar, "lidar", "topic", l.topic);
   (void)read_pose(r, lidar, "lidar", "mount", c.lidar_mount, true);
   r.get(lidar, "lidar", "min_range_m", l.min_range_m, 0.0F, 5.0F);

@@ -93,7 +93,7 @@ class Px4FlightController final : public FlightController, public OdometrySource
   void read_px4(TimePoint now);
   void check_release();
   void send_command(const Px4Command& c);
-  void report(TimePoint now);
+  void report();
   void write_loop();
 
   Px4DriverConfig config_;

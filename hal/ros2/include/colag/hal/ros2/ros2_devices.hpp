@@ -16,11 +16,9 @@
 #include "colag/hal/lidar.hpp"
 #include "colag/hal/odometry_source.hpp"
 #include "colag/hal/ros2/point_cloud.hpp"
+#include "colag/hal/ros2/ros2_names.hpp"
 
 namespace colag::hal::ros2 {
-
-// "/Odometry" -> "rt/Odometry"; "livox/lidar" -> "rt/livox/lidar".
-std::string ros2_dds_topic(const std::string& ros_topic);
 
 struct Ros2OdometryConfig {
   std::uint32_t dds_domain = 0;
