@@ -6,7 +6,7 @@
 #                   [--world ideal|field|FILE] [--json OUT] [--netns] [--loss PCT] [--domain D] [--build DIR]
 #                   [--time-scale X] [--kill-ugv I@T [--restart-after S]]
 #                   [--uav-stack sim|px4 [--px4-release R] [--px4-silent-at T | --px4-failsafe-at T |
-#                    --px4-pilot-at T]]
+#                    --px4-pilot-at T]] [--ugv-base colag|odrive|agilex_v2]
 # Waits for the mission to end, writes the metrics JSON (colag_sim's schema; default
 # build/sitl/run-<pid>/metrics.json), stops every process by PID, prints a summary, and exits 0 when
 # every UGV reached its goal with no collision (1 otherwise, 2 on a usage or set-up error, 77
@@ -34,6 +34,8 @@
 #               --px4-silent-at T (the agent falls silent), --px4-failsafe-at T (PX4 fails
 #               safe), --px4-pilot-at T (a pilot switches to position mode): every UGV must
 #               stop within a second and uav.log say why.
+#   --ugv-base B  the UGVs' bases speak B on their CAN buses (colag_world emulates two ODrive
+#               axes or an AgileX base; each ugv.yaml gets can.protocol B). Default colag.
 # Logs and configurations: build/sitl/run-<pid>/.
 set -euo pipefail
 caller=$PWD
@@ -41,8 +43,8 @@ cd "$(dirname "$0")/.."
 
 ugvs=3 scenario=dense seed=1 max_time=400 json="" netns=0 loss=0 scale=1
 build=build/host domain="" kill_ugv="" restart_after="" world_name=ideal
-uav_stack=sim px4_release=1.16 px4_fault=()
-usage() { sed -n '2,36p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
+uav_stack=sim px4_release=1.16 px4_fault=() ugv_base=colag
+usage() { sed -n '2,38p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
 while (($#)); do
   case "$1" in
     --ugvs) ugvs=$2; shift 2 ;;
@@ -59,6 +61,7 @@ while (($#)); do
     --kill-ugv) kill_ugv=$2; shift 2 ;;
     --restart-after) restart_after=$2; shift 2 ;;
     --uav-stack) uav_stack=$2; shift 2 ;;
+    --ugv-base) ugv_base=$2; shift 2 ;;
     --px4-release) px4_release=$2; shift 2 ;;
     --px4-silent-at|--px4-failsafe-at|--px4-pilot-at) px4_fault=("$1" "$2"); shift 2 ;;
     *) usage ;;
@@ -66,6 +69,7 @@ while (($#)); do
 done
 [[ $ugvs =~ ^[0-9]+$ ]] && ((ugvs >= 1 && ugvs <= 16)) || { echo "sitl: --ugvs must be 1..16" >&2; exit 2; }
 [[ $uav_stack == sim || $uav_stack == px4 ]] || { echo "sitl: --uav-stack must be sim or px4" >&2; exit 2; }
+[[ $ugv_base =~ ^(colag|odrive|agilex_v2)$ ]] || { echo "sitl: --ugv-base must be colag, odrive or agilex_v2" >&2; exit 2; }
 [[ $uav_stack == px4 || ${#px4_fault[@]} -eq 0 ]] || { echo "sitl: PX4 faults need --uav-stack px4" >&2; exit 2; }
 [[ $loss =~ ^[0-9]+$ ]] && ((loss <= 100)) || { echo "sitl: --loss must be 0..100" >&2; exit 2; }
 ((loss == 0 || netns)) || { echo "sitl: --loss needs --netns (loss is injected per namespace)" >&2; exit 2; }
@@ -131,7 +135,7 @@ realtime: {fifo_priority: 0, lock_memory: false}
 YAML
 # The UAV's sensors (and, on PX4, its flight stack's topics) as the world simulates them,
 # described as on a board.
-stack_args=(--uav-stack "$uav_stack")
+stack_args=(--uav-stack "$uav_stack" --ugv-base "$ugv_base")
 [[ $uav_stack == sim ]] || stack_args+=(--px4-release "$px4_release" "${px4_fault[@]}")
 "$build/bin/colag_world" --world "$world_name" --domain "$domain" "${stack_args[@]}" \
   --print-uav-sensors >>"$run/uav.yaml" ||
@@ -142,7 +146,7 @@ for ((i = 0; i < ugvs; ++i)); do
 robot: {id: $i, goal: [$x, -16.0], start_guess: [$x, 16.0, -1.5707963], state_file: $run/ugv$i.state}
 dds: {domain: $domain}
 realtime: {fifo_priority: 0, lock_memory: false}
-can: {interface: sim}
+can: {interface: sim, protocol: $ugv_base}
 YAML
 done
 

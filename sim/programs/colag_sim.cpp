@@ -150,6 +150,7 @@ int run(int argc, char** argv) {
                        ->add_option("--rpe-true-scale", rpe_true_scale,
                                     "its true error sigma is this x what it reports")
                        ->check(sim::positive_up_to(100.0));
+  sim::add_ugv_base_option(app, cfg.ugv_base);
   app.add_option("--json", json_path, "write the metrics as JSON to this file");
   app.add_option("--png", png_path, "draw the mission into this PNG file");
   std::string save_map;

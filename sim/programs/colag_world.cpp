@@ -396,6 +396,7 @@ int run(int argc, char** argv) {
   app.add_option("--world", world_name,
                  "ideal (the paper's), field (what real sensors do), or a YAML world file "
                  "(config/worlds/field.yaml); each robot's clock is the host's in SITL");
+  sim::add_ugv_base_option(app, cfg.ugv_base);
   app.add_option("--uav-stack", uav_stack,
                  "sim: the UAV's devices over the sim link (robot.hal sim); px4: PX4's agent, "
                  "FAST-LIO and the Livox driver on their wire formats (robot.hal px4)")

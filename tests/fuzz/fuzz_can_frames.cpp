@@ -1,12 +1,15 @@
-// CAN traffic as the UGV's wheel odometry receives it: a sequence of frames (any id, dlc, data,
-// time step) through the protocol decoder and CanWheelOdometry, and through the ODrive CAN
-// Simple decoder. Invariants: a frame that decodes re-encodes to the same bytes; every frame is
-// counted once (sample or a reject reason); every odometry sample is finite, physically
-// plausible and in time order; the ODrive decoder accepts only its node's standard-id feedback
-// of the right length.
+// CAN traffic as the UGV's base drivers receive it: a sequence of frames (any id, dlc, data,
+// time step) through the three protocols' decoders (ours, ODrive CAN Simple, AgileX V2), then
+// through one protocol's driver (CanBase: odometry polled, drive commanded between bursts).
+// Invariants: a frame that decodes re-encodes to the same bytes; every frame is counted; every
+// odometry sample is finite, physically plausible and in time order; the ODrive decoder accepts
+// only its node's standard-id feedback of the right length; a driver never crashes on any
+// traffic and always answers with a health.
 #include <cmath>
 #include <cstring>
 
+#include "colag/hal/can/agilex_protocol.hpp"
+#include "colag/hal/can/can_base.hpp"
 #include "colag/hal/can/can_wheel_odometry.hpp"
 #include "colag/hal/can/odrive_protocol.hpp"
 #include "colag/hal/can/wheel_protocol.hpp"
@@ -83,6 +86,31 @@ void check_odrive(const CanFrame& f, std::uint8_t node) {
                        : fb.command == od::Command::kEncoderEstimates && f.dlc == 8);
 }
 
+void check_agilex(const CanFrame& f) {
+  namespace ag = can::agilex;
+  ag::Decoded d;
+  if (ag::decode(f, d) != ag::DecodeError::kNone) return;
+  COLAG_FUZZ_CHECK(!f.extended && d.id == f.id);
+  CanFrame again;
+  switch (d.id) {
+    case ag::kMotionCommandId:
+      again = ag::encode(d.motion);
+      break;
+    case ag::kMotionStateId:
+      again = ag::encode_motion_state(d.motion);
+      break;
+    case ag::kOdometryId:
+      again = ag::encode(d.odometry);
+      break;
+    default:
+      return;  // system state and the commands have reserved bytes: not round-tripped
+  }
+  // Motion frames: lateral speed and steering (bytes 4..7) are not used by a differential base.
+  const std::size_t used = d.id == ag::kOdometryId ? 8 : 4;
+  COLAG_FUZZ_CHECK(again.id == f.id && again.dlc == 8 &&
+                   std::memcmp(again.data, f.data, used) == 0);
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -101,19 +129,28 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       if (!bus.receive(f)) continue;
       check_roundtrip(f, cfg);
       check_odrive(f, node);
+      check_agilex(f);
     }
   }
 
-  // Pass 2: the whole sequence through the odometry, polled every few frames.
+  // Pass 2: the whole sequence through one protocol's driver, polled every few frames.
+  can::BaseConfig base;
+  base.colag = cfg;
+  base.protocol = static_cast<can::BaseProtocol>(cfg.counts_id % 3);
+  base.odrive.left.node = static_cast<std::uint8_t>(cfg.counts_id & 3);
+  base.odrive.right.node = static_cast<std::uint8_t>(base.odrive.left.node + 1);
   ReplayBus bus(in);
-  can::CanWheelOdometry odom(bus, cfg, geometry);
+  can::CanBase driver(bus, base, geometry);
   WheelOdometrySample s;
   TimePoint last{};
   // The fastest a wheel can really turn, with margin for time-stamp jitter.
   const double max_plausible = 4.0 * geometry.max_wheel_speed_mps;
   for (;;) {
-    if (!odom.poll(s)) {
+    if (!driver.odometry().poll(s)) {
       if (in.remaining() < 13) break;
+      (void)driver.drive().command({last + std::chrono::milliseconds(20), 0.3, 0.1});
+      const DriveHealth h = driver.drive().health();
+      COLAG_FUZZ_CHECK(h.fault <= msg::BaseFault::kLowBattery);
       continue;
     }
     COLAG_FUZZ_CHECK(std::isfinite(s.v_mps) && std::isfinite(s.omega_radps));
@@ -122,7 +159,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     COLAG_FUZZ_CHECK(s.stamp > last);
     last = s.stamp;
   }
-  const auto& c = odom.counters();
+  const can::BaseCounters c = driver.counters();
   COLAG_FUZZ_CHECK(c.frames == bus.delivered());
   COLAG_FUZZ_CHECK(c.samples <= c.frames);
   return 0;

@@ -175,7 +175,10 @@ void pcd_seeds(const fs::path& dir) {
 }
 
 void yaml_seeds(const fs::path& dir, const fs::path& config_dir) {
-  for (const auto& [file, selector] : {std::pair{"ugv.example.yaml", 1}, {"uav.example.yaml", 0}}) {
+  for (const auto& [file, selector] : {std::pair{"ugv.example.yaml", 1},
+                                       {"ugv_odrive.example.yaml", 1},
+                                       {"ugv_agilex.example.yaml", 1},
+                                       {"uav.example.yaml", 0}}) {
     std::ifstream in(config_dir / file, std::ios::binary);
     std::string text(std::istreambuf_iterator<char>(in), {});
     // The fuzzer skips documents naming device files: use a video file instead of /dev/video0.

@@ -56,8 +56,8 @@ TEST(SimLink, EveryDeviceCrossesDdsBetweenTheWorldAndTheRobots) {
   hal::sim::SimUavDevices uav(uav_link);
 
   // The UGV: the real CAN drivers on the sim bus. Drive forward until the body has moved.
-  hal::can::CanWheelOdometry odometry(bus, wc.ugv.protocol, wc.ugv.geometry);
-  hal::can::CanDrive drive(bus, wc.ugv.protocol, wc.ugv.geometry);
+  hal::can::CanWheelOdometry odometry(bus, wc.ugv.base.colag, wc.ugv.geometry);
+  hal::can::CanDrive drive(bus, wc.ugv.base.colag, wc.ugv.geometry);
   double odometry_m = 0.0;
   TimePoint last{};
   ASSERT_TRUE(run_until(

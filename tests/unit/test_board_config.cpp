@@ -64,8 +64,8 @@ odometry: {timeout_ms: 80, sigma_v: 0.05, sigma_omega: 0.04,
   EXPECT_EQ(c.common.realtime.fifo_priority, 60);
   EXPECT_FALSE(c.common.realtime.lock_memory);
   EXPECT_EQ(c.can_interface, "vcan1");
-  EXPECT_EQ(c.protocol.counts_id, 0x301u);
-  EXPECT_EQ(c.protocol.command_id, 0x401u);
+  EXPECT_EQ(c.base.colag.counts_id, 0x301u);
+  EXPECT_EQ(c.base.colag.command_id, 0x401u);
   EXPECT_DOUBLE_EQ(c.wheels.wheel_radius_m, 0.08);
   EXPECT_EQ(c.wheels.ticks_per_revolution, 2048u);
   EXPECT_EQ(c.nav.schedule.control.period, std::chrono::milliseconds(10));

@@ -276,6 +276,26 @@ TEST(UgvNavTask, WheelOdometryLossStopsTheRobotAndReportsAFault) {
   EXPECT_EQ(rig.ugv->mode(), msg::UgvMode::kDriving);
 }
 
+TEST(UgvNavTask, ABaseFaultStopsTheRobotAndIsReportedUntilItClears) {
+  Rig rig(Vec2(6.0, 0.0));
+  rig.publish_map(-3.2, -3.2, 9.6, 3.2);
+  rig.ex.run_until(TimePoint{3s});
+  ASSERT_GT(rig.drive.last().v_mps, 0.1);
+  rig.drive.report({msg::BaseFault::kEstop, 0});
+  rig.ex.run_until(rig.ex.now() + 60ms);  // one control period + slack
+  EXPECT_EQ(rig.ugv->mode(), msg::UgvMode::kFault);
+  EXPECT_EQ(rig.drive.last().v_mps, 0.0);
+  EXPECT_EQ(rig.ugv->base_fault().fault, msg::BaseFault::kEstop);
+  rig.drive.report({msg::BaseFault::kMotorError, 0x40});  // another fault: counted again
+  rig.ex.run_until(rig.ex.now() + 60ms);
+  EXPECT_EQ(rig.ugv->base_fault().code, 0x40u);
+  EXPECT_EQ(rig.ugv->health().base_faults, 2u);
+  rig.drive.report({});
+  rig.ex.run_until(rig.ex.now() + 200ms);
+  EXPECT_EQ(rig.ugv->mode(), msg::UgvMode::kDriving);
+  EXPECT_EQ(rig.ugv->base_fault().fault, msg::BaseFault::kNone);
+}
+
 TEST(UgvNavTask, AUavWhoseFlightControllerLeftTheMissionStopsItUntilItFliesAgain) {
   Rig rig(Vec2(6.0, 0.0));
   rig.publish_map(-3.2, -3.2, 9.6, 3.2);

@@ -115,7 +115,12 @@ void UgvNavTask::read_odometry(TimePoint now) {
   const bool silent = last == TimePoint{} ? now - started_ > config_.odometry_startup_grace
                                           : now - last > config_.odometry_timeout;
   if (silent && !fault_) ++health_.watchdog_trips;
-  fault_ = silent;
+  // The base's own faults (e-stop, motor errors, bus-off, ...): the same safe stop.
+  const hal::DriveHealth base = drive_.health();
+  const bool base_fault = base.fault != msg::BaseFault::kNone;
+  if (base_fault && base.fault != base_fault_.fault) ++health_.base_faults;
+  base_fault_ = silent ? hal::DriveHealth{msg::BaseFault::kOdometrySilent, 0} : base;
+  fault_ = silent || base_fault;
 }
 
 void UgvNavTask::read_relative_poses(TimePoint now) {
@@ -515,6 +520,8 @@ void UgvNavTask::publish_status(TimePoint now) {
   s.rejected_inputs = static_cast<std::uint32_t>(health_.rejected_inputs());
   s.overruns = static_cast<std::uint32_t>(health_.overruns);
   s.degradation = static_cast<std::uint8_t>(health_.degradation);
+  s.base_fault = base_fault_.fault;
+  s.base_error = base_fault_.code;
   (void)transport_.publish(s);
 }
 

@@ -1,5 +1,7 @@
 #include "colag/hal/can/can_wheel_odometry.hpp"
 
+#include "colag/hal/can/diff_drive.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -42,18 +44,12 @@ void CanWheelOdometry::read_bus() {
       const std::int32_t limit = geometry_.max_ticks_per_frame * (gap + 1);
       const double m_per_tick =
           2.0 * M_PI * geometry_.wheel_radius_m / geometry_.ticks_per_revolution;
-      const double left = dl * m_per_tick, right = dr * m_per_tick;
-      // A wheel speed (ticks over receive-time step) beyond 3x the commanded limit is a fault,
-      // or two frames stamped nearly together; the factor leaves room for stamp jitter.
-      const double max_step = 3.0 * geometry_.max_wheel_speed_mps * dt;
-      if (dt <= 0.0 || std::abs(dl) > limit || std::abs(dr) > limit || std::abs(left) > max_step ||
-          std::abs(right) > max_step) {
+      WheelOdometrySample s;
+      s.stamp = f.stamp;
+      if (std::abs(dl) > limit || std::abs(dr) > limit ||
+          !twist_from_travel({dl * m_per_tick, dr * m_per_tick}, dt, geometry_, s)) {
         ++counters_.implausible;
       } else {
-        WheelOdometrySample s;
-        s.stamp = f.stamp;
-        s.v_mps = 0.5 * (left + right) / dt;
-        s.omega_radps = (right - left) / geometry_.track_width_m / dt;
         if (pending_.push_overwrite(s)) ++counters_.overflowed;
         ++counters_.samples;
       }
@@ -83,18 +79,19 @@ Status CanDrive::command(const DriveCommand& cmd) {
     (void)stop(cmd.stamp);
     return {Errc::kInvalidArgument, "drive command not finite: stopped"};
   }
-  double left = cmd.v_mps - 0.5 * geometry_.track_width_m * cmd.omega_radps;
-  double right = cmd.v_mps + 0.5 * geometry_.track_width_m * cmd.omega_radps;
-  const double peak = std::max(std::abs(left), std::abs(right));
-  if (peak > geometry_.max_wheel_speed_mps) {
-    left *= geometry_.max_wheel_speed_mps / peak;
-    right *= geometry_.max_wheel_speed_mps / peak;
-  }
-  return send(cmd.stamp, left, right, true);
+  const WheelPair w = wheel_speeds(cmd, geometry_);
+  return send(cmd.stamp, w.left, w.right, true);
 }
 
 Status CanDrive::stop(TimePoint now) {
   return send(now, 0.0, 0.0, true);
+}
+
+DriveHealth CanDrive::health() const {
+  // The motor controller of this protocol has no fault report: the wheel odometry's watchdog
+  // (in the task) and the bus's own state are what the firmware can know.
+  if (bus_.stats().bus_off) return {msg::BaseFault::kBusOff, 0};
+  return {};
 }
 
 }  // namespace colag::hal::can

@@ -82,4 +82,49 @@ DecodeError decode(const CanFrame& f, std::uint8_t node, Feedback& out) {
   }
 }
 
+CanFrame heartbeat(std::uint8_t node, const Heartbeat& h) {
+  CanFrame f = frame(node, Command::kHeartbeat, 8);
+  put_u32(f.data, h.axis_error);
+  f.data[4] = h.axis_state;
+  f.data[5] = h.motor_error ? 1 : 0;
+  f.data[6] = h.encoder_error ? 1 : 0;
+  f.data[7] = h.controller_error ? 1 : 0;
+  return f;
+}
+
+CanFrame encoder_estimates(std::uint8_t node, const EncoderEstimates& e) {
+  CanFrame f = frame(node, Command::kEncoderEstimates, 8);
+  put_u32(f.data, std::bit_cast<std::uint32_t>(e.pos_turns));
+  put_u32(f.data + 4, std::bit_cast<std::uint32_t>(e.vel_turns_per_s));
+  return f;
+}
+
+DecodeError decode_command(const CanFrame& f, std::uint8_t node, CommandFrame& out) {
+  if (f.extended) return DecodeError::kExtendedId;
+  if ((f.id >> 5) != (node & kMaxNodeId)) return DecodeError::kOtherNode;
+  const auto c = static_cast<Command>(f.id & 0x1F);
+  out.command = c;
+  switch (c) {
+    case Command::kEstop:
+    case Command::kClearErrors:
+      return DecodeError::kNone;
+    case Command::kSetAxisState:
+      if (f.dlc < 4) return DecodeError::kWrongDlc;
+      out.requested_state = get_u32(f.data);
+      return DecodeError::kNone;
+    case Command::kSetControllerMode:
+      if (f.dlc != 8) return DecodeError::kWrongDlc;
+      out.control_mode = static_cast<std::int32_t>(get_u32(f.data));
+      out.input_mode = static_cast<std::int32_t>(get_u32(f.data + 4));
+      return DecodeError::kNone;
+    case Command::kSetInputVel:
+      if (f.dlc != 8) return DecodeError::kWrongDlc;
+      out.vel_turns_per_s = std::bit_cast<float>(get_u32(f.data));
+      out.torque_ff_nm = std::bit_cast<float>(get_u32(f.data + 4));
+      return DecodeError::kNone;
+    default:
+      return DecodeError::kNotFeedback;
+  }
+}
+
 }  // namespace colag::hal::can::odrive

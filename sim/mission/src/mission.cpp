@@ -6,7 +6,7 @@
 #include <memory>
 #include <optional>
 
-#include "colag/hal/can/can_wheel_odometry.hpp"
+#include "colag/hal/can/can_base.hpp"
 #include "colag/platform/lane_outbox.hpp"
 #include "colag/platform/loopback_transport.hpp"
 #include "colag/platform/monotonic_clock.hpp"
@@ -224,8 +224,7 @@ void add_unknown_cells(const uav::UavSupervisorTask& uav, const sim::BoxWorld& w
 // through.
 struct UgvStack {
   std::unique_ptr<platform::LaneOutbox> outbox;
-  std::unique_ptr<hal::can::CanWheelOdometry> odometry;
-  std::unique_ptr<hal::can::CanDrive> drive;
+  std::unique_ptr<hal::can::CanBase> base;
   std::unique_ptr<ugv::UgvNavTask> task;
   std::unique_ptr<SelfPerceptionTask> perception;
   Vec2 goal;
@@ -351,12 +350,10 @@ std::unique_ptr<Mission> Mission::compose(const MissionConfig& cfg, std::string&
     nc.predictor.use_uncertainty = cfg.ablation != Ablation::kNoUncertainty;
     nc.predictor.horizon_m = cfg.predict_horizon_m;
     nc.map.unknown_blocks_prediction = !cfg.self_perception;
-    s.odometry = std::make_unique<hal::can::CanWheelOdometry>(p->world->ugv_can(i), wc.ugv.protocol,
-                                                              wc.ugv.geometry);
-    s.drive = std::make_unique<hal::can::CanDrive>(p->world->ugv_can(i), wc.ugv.protocol,
-                                                   wc.ugv.geometry);
+    s.base =
+        std::make_unique<hal::can::CanBase>(p->world->ugv_can(i), wc.ugv.base, wc.ugv.geometry);
     s.outbox = std::make_unique<platform::LaneOutbox>(*p->bus);
-    s.task = std::make_unique<ugv::UgvNavTask>(nc, *s.outbox, *s.odometry, *s.drive);
+    s.task = std::make_unique<ugv::UgvNavTask>(nc, *s.outbox, s.base->odometry(), s.base->drive());
     if (cfg.self_perception)
       s.perception =
           std::make_unique<SelfPerceptionTask>(*s.outbox, *p->world, i, beam_pattern_of(wc.lidar));

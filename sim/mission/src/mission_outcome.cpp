@@ -113,6 +113,7 @@ std::string to_json(const MissionOutcome& o, bool include_wall_time) {
     if (c.step_at_s >= 0.0) j["clocks"]["uav_step"] = {{"at_s", c.step_at_s}, {"by_s", c.step_s}};
   }
   j["world"] = o.config.world.name;
+  j["ugv_base"] = hal::can::to_string(o.config.ugv_base);
   j["scenario"] = o.config.scenario == "file" ? o.config.map_file : o.config.scenario;
   j["ablation"] = to_string(o.config.ablation);
   j["self_perception"] = o.config.self_perception;

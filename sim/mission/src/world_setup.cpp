@@ -39,6 +39,7 @@ sim::SimWorldConfig sim_world_config(const MissionConfig& cfg) {
   wc.seed = cfg.seed;
   wc.lidar.columns = cfg.lidar_columns;
   wc.ugv.encoder_bias = cfg.faults.odom_bias;
+  wc.ugv.base.protocol = cfg.ugv_base;
   wc.camera = camera_of(cfg.world.camera);
   wc.lidar_errors = {cfg.world.lidar.range_sigma_m, cfg.world.lidar.dropout,
                      cfg.world.lidar.returns_only};

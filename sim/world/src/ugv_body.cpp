@@ -6,21 +6,15 @@
 namespace colag::sim {
 
 void UgvBody::step(TimePoint now, double dt, hal::CanBus& bus) {
-  hal::CanFrame f;
-  while (bus.receive(f)) {
-    hal::can::DecodedFrame d;
-    if (hal::can::decode(f, config_.protocol, d) != hal::can::DecodeError::kNone) continue;
-    if (d.kind != hal::can::FrameKind::kCommand) continue;
-    target_left_ = d.command.enable ? d.command.left_mmps / 1000.0 : 0.0;
-    target_right_ = d.command.enable ? d.command.right_mmps / 1000.0 : 0.0;
-    last_command_ = f.stamp;
+  hal::can::WheelPair target = controller_.receive(now, bus);
+  if (frozen_) {
+    target = {};
+    left_ = right_ = 0.0;
   }
-  if (elapsed(now, last_command_, config_.command_timeout)) target_left_ = target_right_ = 0.0;
-  if (frozen_) target_left_ = target_right_ = left_ = right_ = 0.0;
   const double dv = config_.wheel_accel_mps2 * dt;
   const double wmax = config_.geometry.max_wheel_speed_mps;
-  left_ = std::clamp(std::clamp(target_left_, left_ - dv, left_ + dv), -wmax, wmax);
-  right_ = std::clamp(std::clamp(target_right_, right_ - dv, right_ + dv), -wmax, wmax);
+  left_ = std::clamp(std::clamp(target.left, left_ - dv, left_ + dv), -wmax, wmax);
+  right_ = std::clamp(std::clamp(target.right, right_ - dv, right_ + dv), -wmax, wmax);
 
   // True motion: the wheels' twist with 1 % multiplicative noise, integrated along the arc.
   const double b = config_.geometry.track_width_m;
@@ -63,24 +57,8 @@ void UgvBody::step(TimePoint now, double dt, hal::CanBus& bus) {
     mv += rng_.gaussian(0.0, config_.odometry_noise.sigma_v_mps);
     mw += rng_.gaussian(0.0, config_.odometry_noise.sigma_omega_radps);
   }
-  const double m_per_tick =
-      2.0 * M_PI * config_.geometry.wheel_radius_m / config_.geometry.ticks_per_revolution;
-  ticks_left_ += (mv - 0.5 * b * mw) * dt / m_per_tick;
-  ticks_right_ += (mv + 0.5 * b * mw) * dt / m_per_tick;
-  const auto wrap = [](double t) {
-    const auto i = static_cast<std::int64_t>(std::floor(t));
-    return static_cast<std::uint32_t>(((i % hal::can::kTickModulus) + hal::can::kTickModulus) %
-                                      hal::can::kTickModulus);
-  };
-  (void)bus.send(hal::can::encode(hal::can::EncoderCounts{wrap(ticks_left_), wrap(ticks_right_),
-                                                          alive_counts_++},
-                                  config_.protocol),
-                 now);
-  hal::can::WheelSpeeds speeds;
-  speeds.left_mmps = static_cast<std::int16_t>(std::lround(left_ * 1000.0));
-  speeds.right_mmps = static_cast<std::int16_t>(std::lround(right_ * 1000.0));
-  speeds.alive = alive_speeds_++;
-  (void)bus.send(hal::can::encode(speeds, config_.protocol), now);
+  controller_.report(now, {(mv - 0.5 * b * mw) * dt, (mv + 0.5 * b * mw) * dt}, {left_, right_},
+                     bus);
 }
 
 }  // namespace colag::sim

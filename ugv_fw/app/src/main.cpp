@@ -21,9 +21,23 @@ using namespace colag;
 namespace {
 
 void describe(const ugv::UgvBoardConfig& cfg) {
-  std::printf("ugv_fw: UGV %d, goal (%.2f, %.2f), CAN %s (ids 0x%x/0x%x/0x%x), DDS domain %u\n",
-              cfg.nav.id, cfg.nav.goal.x(), cfg.nav.goal.y(), cfg.can_interface.c_str(),
-              cfg.protocol.counts_id, cfg.protocol.speeds_id, cfg.protocol.command_id,
+  const hal::can::BaseConfig& b = cfg.base;
+  char base[96];
+  switch (b.protocol) {
+    case hal::can::BaseProtocol::kColag:
+      std::snprintf(base, sizeof base, "colag, ids 0x%x/0x%x/0x%x", b.colag.counts_id,
+                    b.colag.speeds_id, b.colag.command_id);
+      break;
+    case hal::can::BaseProtocol::kOdrive:
+      std::snprintf(base, sizeof base, "odrive, nodes %d (left) and %d (right)", b.odrive.left.node,
+                    b.odrive.right.node);
+      break;
+    case hal::can::BaseProtocol::kAgilexV2:
+      std::snprintf(base, sizeof base, "agilex_v2");
+      break;
+  }
+  std::printf("ugv_fw: UGV %d, goal (%.2f, %.2f), CAN %s (%s), DDS domain %u\n", cfg.nav.id,
+              cfg.nav.goal.x(), cfg.nav.goal.y(), cfg.can_interface.c_str(), base,
               cfg.common.dds_domain);
 }
 
@@ -63,6 +77,7 @@ int run(const ugv::UgvBoardConfig& config, const board::ProgramArgs& args) {
   ugv.run(args.seconds > 0.0 ? now + seconds(args.seconds) : TimePoint::max());
   // Motors first.
   const bool stopped = ugv.stop_motors();
+  ugv.shutdown_base();
   std::printf("ugv_fw: stopping; motors commanded to zero%s\n",
               stopped ? "" : " (send failed: the controller's command timeout stops them)");
   board::print_task_stats("ugv_fw", ugv.schedule());

@@ -29,9 +29,8 @@ bool UgvBoard::open_can(std::string& error) {
   }
   linux_hal::SocketCanConfig can_cfg;
   can_cfg.interface = cfg.can_interface;
-  const std::uint32_t mask = cfg.protocol.extended_ids ? 0x1FFFFFFFu : 0x7FFu;
-  (void)can_cfg.filters.push_back({cfg.protocol.counts_id, mask, cfg.protocol.extended_ids});
-  (void)can_cfg.filters.push_back({cfg.protocol.speeds_id, mask, cfg.protocol.extended_ids});
+  for (const hal::can::IdFilter& f : hal::can::base_filters(cfg.base))
+    (void)can_cfg.filters.push_back({f.id, f.mask, f.extended});
   linux_hal::SocketCanBus& b = socketcan_.emplace(can_cfg, executor_.clock());
   if (const Status s = b.open(); !s) {
     std::snprintf(text, sizeof text, "%s: %s (%s)", cfg.can_interface.c_str(), s.message(),
@@ -46,8 +45,7 @@ bool UgvBoard::open_can(std::string& error) {
 bool UgvBoard::start(std::string& error) {
   const UgvBoardConfig& cfg = config_;
   if (!open_can(error)) return false;
-  odometry_.emplace(*bus_, cfg.protocol, cfg.wheels);
-  drive_.emplace(*bus_, cfg.protocol, cfg.wheels);
+  hal::can::CanBase& base = base_.emplace(*bus_, cfg.base, cfg.wheels);
 
   platform::dds::DdsConfig dds_cfg;
   dds_cfg.domain_id = cfg.common.dds_domain;
@@ -62,7 +60,7 @@ bool UgvBoard::start(std::string& error) {
   }
 
   // The table: the transport first, then the task's loops, all from the UGV's schedule table.
-  UgvNavTask& task = task_.emplace(cfg.nav, dds_, *odometry_, *drive_);
+  UgvNavTask& task = task_.emplace(cfg.nav, dds_, base.odometry(), base.drive());
   pump_.emplace(dds_);
   Status st = executor_.add(platform::row(*pump_, cfg.nav.schedule.transport));
   if (st) st = executor_.add(task.rows());
@@ -94,24 +92,29 @@ void UgvBoard::keep_state() {
 }
 
 bool UgvBoard::stop_motors() {
-  if (!drive_) return true;
-  const Status stopped = drive_->stop(executor_.clock().now());
-  (void)drive_->stop(executor_.clock().now());
+  if (!base_) return true;
+  const Status stopped = base_->drive().stop(executor_.clock().now());
+  (void)base_->drive().stop(executor_.clock().now());
   return static_cast<bool>(stopped);
 }
 
+void UgvBoard::shutdown_base() {
+  if (base_) base_->drive().shutdown(executor_.clock().now());
+}
+
 void UgvBoard::print_counters(const char* program) const {
-  if (bus_ == nullptr || !odometry_) return;
-  const auto& c = odometry_->counters();
+  if (bus_ == nullptr || !base_) return;
+  const hal::can::BaseCounters c = base_->counters();
+  const hal::CanBusStats b = bus_->stats();
   std::printf(
-      "%s: CAN rx %llu, tx %llu, tx failures %llu, bad frames %llu, lost %llu, "
-      "watchdog trips %llu\n",
-      program, static_cast<unsigned long long>(bus_->stats().rx_frames),
-      static_cast<unsigned long long>(bus_->stats().tx_frames),
-      static_cast<unsigned long long>(bus_->stats().tx_failures),
-      static_cast<unsigned long long>(c.bad_checksum) + c.wrong_dlc + c.unknown_id,
-      static_cast<unsigned long long>(c.lost_frames),
-      static_cast<unsigned long long>(task_ ? task_->health().watchdog_trips : 0));
+      "%s: CAN (%s) rx %llu, tx %llu, tx failures %llu, bad frames %llu, lost %llu, "
+      "implausible %llu, watchdog trips %llu, base faults %llu\n",
+      program, hal::can::to_string(config_.base.protocol),
+      static_cast<unsigned long long>(b.rx_frames), static_cast<unsigned long long>(b.tx_frames),
+      static_cast<unsigned long long>(b.tx_failures), static_cast<unsigned long long>(c.bad_frames),
+      static_cast<unsigned long long>(c.lost), static_cast<unsigned long long>(c.implausible),
+      static_cast<unsigned long long>(task_ ? task_->health().watchdog_trips : 0),
+      static_cast<unsigned long long>(task_ ? task_->health().base_faults : 0));
 }
 
 }  // namespace colag::ugv

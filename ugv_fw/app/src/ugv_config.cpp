@@ -13,6 +13,54 @@ std::uint32_t can_id(board::Reader& r, const YAML::Node& can, const char* key, s
   return id;
 }
 
+void read_colag_protocol(board::Reader& r, const YAML::Node& can,
+                         hal::can::WheelProtocolConfig& p) {
+  r.get(can, "can", "extended_ids", p.extended_ids);
+  p.counts_id = can_id(r, can, "counts_id", p.counts_id, p.extended_ids);
+  p.speeds_id = can_id(r, can, "speeds_id", p.speeds_id, p.extended_ids);
+  p.command_id = can_id(r, can, "command_id", p.command_id, p.extended_ids);
+  if (r.ok() &&
+      (p.counts_id == p.speeds_id || p.counts_id == p.command_id || p.speeds_id == p.command_id))
+    r.fail("can", "counts_id, speeds_id and command_id must differ");
+}
+
+void read_direction(board::Reader& r, const YAML::Node& n, const char* path, const char* key,
+                    int& out) {
+  r.get(n, path, key, out, -1, 1);
+  if (out == 0) r.fail(std::string(path) + "." + key, "must be 1 or -1");
+}
+
+void read_odrive(board::Reader& r, const YAML::Node& n, hal::can::OdriveConfig& o) {
+  const char* path = "can.odrive";
+  r.only(n, path,
+         {"left_node", "right_node", "left_direction", "right_direction", "gear_ratio",
+          "clear_errors_at_start", "heartbeat_timeout_ms"});
+  const auto max_node = static_cast<int>(hal::can::odrive::kMaxNodeId);
+  int left = o.left.node, right = o.right.node;
+  r.get(n, path, "left_node", left, 0, max_node);
+  r.get(n, path, "right_node", right, 0, max_node);
+  o.left.node = static_cast<std::uint8_t>(left);
+  o.right.node = static_cast<std::uint8_t>(right);
+  if (r.ok() && left == right) r.fail("can.odrive", "left_node and right_node must differ");
+  read_direction(r, n, path, "left_direction", o.left.direction);
+  read_direction(r, n, path, "right_direction", o.right.direction);
+  r.get(n, path, "gear_ratio", o.motor_turns_per_wheel_turn, 0.01, 1000.0);
+  r.get(n, path, "clear_errors_at_start", o.clear_errors_at_start);
+  r.millis(n, path, "heartbeat_timeout_ms", o.heartbeat_timeout, 150.0, 5000.0);
+}
+
+void read_agilex(board::Reader& r, const YAML::Node& n, hal::can::AgilexConfig& a) {
+  const char* path = "can.agilex";
+  r.only(n, path,
+         {"left_sign", "right_sign", "max_angular_radps", "clear_errors_at_start",
+          "state_timeout_ms"});
+  read_direction(r, n, path, "left_sign", a.left_sign);
+  read_direction(r, n, path, "right_sign", a.right_sign);
+  r.get(n, path, "max_angular_radps", a.max_angular_radps, 0.1, 10.0);
+  r.get(n, path, "clear_errors_at_start", a.clear_errors_at_start);
+  r.millis(n, path, "state_timeout_ms", a.state_timeout, 50.0, 5000.0);
+}
+
 // The UGV's own sections; `doc` is const: const access never inserts keys.
 void read_ugv_sections(board::Reader& r, const YAML::Node& doc, UgvBoardConfig& c) {
   const YAML::Node robot = child(doc, "robot");
@@ -33,18 +81,27 @@ void read_ugv_sections(board::Reader& r, const YAML::Node& doc, UgvBoardConfig& 
   r.get(robot, "robot", "state_max_age_s", c.state_max_age_s, 1.0, 86400.0);
 
   const YAML::Node can = child(doc, "can");
-  r.only(can, "can", {"interface", "counts_id", "speeds_id", "command_id", "extended_ids"});
+  r.only(can, "can",
+         {"interface", "protocol", "counts_id", "speeds_id", "command_id", "extended_ids", "odrive",
+          "agilex"});
   r.get(can, "can", "interface", c.can_interface);
-  r.get(can, "can", "extended_ids", c.protocol.extended_ids);
-  c.protocol.counts_id = can_id(r, can, "counts_id", c.protocol.counts_id, c.protocol.extended_ids);
-  c.protocol.speeds_id = can_id(r, can, "speeds_id", c.protocol.speeds_id, c.protocol.extended_ids);
-  c.protocol.command_id =
-      can_id(r, can, "command_id", c.protocol.command_id, c.protocol.extended_ids);
-  if (r.ok() && (c.protocol.counts_id == c.protocol.speeds_id ||
-                 c.protocol.counts_id == c.protocol.command_id ||
-                 c.protocol.speeds_id == c.protocol.command_id))
-    r.fail("can", "counts_id, speeds_id and command_id must differ");
   if (r.ok() && c.can_interface.empty()) r.fail("can.interface", "must not be empty");
+  std::string protocol = hal::can::to_string(c.base.protocol);
+  r.get(can, "can", "protocol", protocol);
+  if (!hal::can::parse_base_protocol(protocol, c.base.protocol))
+    r.fail("can.protocol",
+           "unknown protocol '" + protocol + "' (known: " + hal::can::kBaseProtocolNames + ")");
+  // A section for another protocol than the one selected is a mistake worth naming.
+  const bool colag = c.base.protocol == hal::can::BaseProtocol::kColag;
+  for (const char* key : {"counts_id", "speeds_id", "command_id", "extended_ids"})
+    if (!colag && child(can, key)) r.fail(std::string("can.") + key, "only with protocol colag");
+  if (child(can, "odrive") && c.base.protocol != hal::can::BaseProtocol::kOdrive)
+    r.fail("can.odrive", "only with protocol odrive");
+  if (child(can, "agilex") && c.base.protocol != hal::can::BaseProtocol::kAgilexV2)
+    r.fail("can.agilex", "only with protocol agilex_v2");
+  read_colag_protocol(r, can, c.base.colag);
+  read_odrive(r, child(can, "odrive"), c.base.odrive);
+  read_agilex(r, child(can, "agilex"), c.base.agilex);
 
   const YAML::Node wheels = child(doc, "wheels");
   r.only(wheels, "wheels", {"radius_m", "track_m", "ticks_per_rev", "max_speed_mps"});

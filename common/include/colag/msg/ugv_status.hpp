@@ -52,6 +52,43 @@ inline const char* to_string(BlockedReason r) {
   return "unknown reason";
 }
 
+// Why a UGV is in kFault: its wheel odometry or its base (motor controllers, chassis).
+enum class BaseFault : std::uint8_t {
+  kNone = 0,
+  kOdometrySilent = 1,  // no wheel odometry within its timeout
+  kBaseSilent = 2,      // the base's heartbeat / state stopped
+  kNotReady = 3,        // the base does not take commands (not in closed loop / CAN mode)
+  kMotorError = 4,      // the base reports an error (`base_error` holds its code)
+  kEstop = 5,           // the base's emergency stop is pressed
+  kBusOff = 6,          // the CAN controller went bus-off
+  kLowBattery = 7,      // the base reports its battery too low to drive
+};
+template <>
+struct EnumRange<BaseFault> {
+  static constexpr BaseFault kLast = BaseFault::kLowBattery;
+};
+inline const char* to_string(BaseFault f) {
+  switch (f) {
+    case BaseFault::kNone:
+      return "none";
+    case BaseFault::kOdometrySilent:
+      return "wheel odometry silent";
+    case BaseFault::kBaseSilent:
+      return "base silent";
+    case BaseFault::kNotReady:
+      return "base not taking commands";
+    case BaseFault::kMotorError:
+      return "base reports an error";
+    case BaseFault::kEstop:
+      return "emergency stop";
+    case BaseFault::kBusOff:
+      return "CAN bus-off";
+    case BaseFault::kLowBattery:
+      return "battery too low";
+  }
+  return "unknown fault";
+}
+
 // A UGV's estimated state (UGV -> UAV and the other UGVs, ~10 Hz).
 struct UgvStatus {
   TimePoint stamp;
@@ -69,11 +106,13 @@ struct UgvStatus {
   std::uint32_t rejected_inputs = 0;  // health: malformed or out-of-gate inputs so far
   std::uint32_t overruns = 0;         // health: task steps over their budget so far
   std::uint8_t degradation = 0;       // health: 0 = full work; > 0 = shedding work (overruns)
+  BaseFault base_fault = BaseFault::kNone;  // with kFault: why
+  std::uint32_t base_error = 0;             // the base's own error code (with kMotorError)
   friend bool operator==(const UgvStatus&, const UgvStatus&) = default;
 };
 COLAG_MESSAGE_FIELDS(UgvStatus, stamp, ugv_id, mode, position_m, yaw_rad, covariance, velocity_mps,
                      yaw_rate_radps, goal_m, waiting_time_s, blocked_reason, clock_error_s,
-                     rejected_inputs, overruns, degradation);
+                     rejected_inputs, overruns, degradation, base_fault, base_error);
 
 // Superseded by the next one 100 ms later: best effort; a UGV is expected every 500 ms.
 template <>

@@ -36,6 +36,7 @@ struct UgvHealth {
   std::uint64_t statuses_rejected = 0;
   std::uint64_t drive_errors = 0;
   std::uint64_t watchdog_trips = 0;   // wheel odometry went silent
+  std::uint64_t base_faults = 0;      // the base reported a fault (each new one counted once)
   std::uint64_t uav_unavailable = 0;  // times the UAV said its flight controller left the mission
   std::uint64_t plans = 0;
   std::uint64_t plan_failures = 0;
@@ -71,6 +72,8 @@ class UgvNavTask {
   const Trajectory& trajectory() const { return trajectory_; }
   const Prediction& prediction() const { return prediction_; }
   const UgvHealth& health() const { return health_; }
+  // Why the UGV is in kFault (kNone when it is not).
+  const hal::DriveHealth& base_fault() const { return base_fault_; }
   const FleetClock& fleet_clock() const { return fleet_; }
   TimePoint now() const { return last_control_; }  // its clock, at its last control step
   double waiting_time_s() const {                  // stood still before arrival: the parts' sum
@@ -158,6 +161,7 @@ class UgvNavTask {
   msg::UgvMode mode_ = msg::UgvMode::kWaitingForInit;
   msg::BlockedReason blocked_reason_ = msg::BlockedReason::kNone;  // set with mode_
   bool fault_ = false;
+  hal::DriveHealth base_fault_;  // why fault_ (odometry silent, or the base's own fault)
   msg::UavFlight uav_flight_ = msg::UavFlight::kInControl;  // as the UAV's last sample said
   TimePoint last_uav_stamp_ = kNever;                       // its stamp (fleet time)
   bool stopped_for_support_ = false;

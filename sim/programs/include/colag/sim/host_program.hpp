@@ -11,7 +11,20 @@
 #include <optional>
 #include <string>
 
+#include "colag/hal/can/base_config.hpp"
+
 namespace colag::sim {
+
+// --ugv-base: the CAN protocol of the UGVs' bases (their emulators in the world).
+inline CLI::Option* add_ugv_base_option(CLI::App& app, hal::can::BaseProtocol& out) {
+  return app
+      .add_option_function<std::string>(
+          "--ugv-base",
+          [&out](const std::string& name) { (void)hal::can::parse_base_protocol(name, out); },
+          "the UGVs' bases: colag (our wheel protocol, default), odrive (two ODrive axes, CAN "
+          "Simple) or agilex_v2 (an AgileX base, protocol V2)")
+      ->check(CLI::IsMember({"colag", "odrive", "agilex_v2"}));
+}
 
 template <class Run>
 int guarded_main(const char* program, int error_code, Run&& run) {

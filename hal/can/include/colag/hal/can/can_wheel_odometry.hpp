@@ -65,6 +65,7 @@ class CanDrive final : public Drive {
   // (v, omega) -> wheel speeds, scaled together so that neither wheel exceeds its limit.
   Status command(const DriveCommand& cmd) override;
   Status stop(TimePoint now) override;
+  DriveHealth health() const override;
 
  private:
   Status send(TimePoint now, double left_mps, double right_mps, bool enable);

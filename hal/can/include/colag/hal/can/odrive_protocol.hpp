@@ -1,7 +1,8 @@
 #pragma once
 // ODrive's "CAN Simple" protocol (firmware 0.5.x), wheel level: a pure codec. Each axis is a
 // node (id 0..63); the 11-bit CAN id is node << 5 | command; payloads are little endian.
-// Facts from ODrive's published protocol table; the driver on top of it is issue 25's next step.
+// Facts from ODrive's published protocol table. The driver is odrive_base.hpp; the emulator of an
+// ODrive (the simulated world, HIL) uses the axis side below.
 #include <cstdint>
 
 #include "colag/hal/can_bus.hpp"
@@ -21,8 +22,13 @@ enum class Command : std::uint8_t {
 };
 
 // Axis states (the ones the firmware uses).
+inline constexpr std::uint32_t kAxisStateUndefined = 0;
 inline constexpr std::uint32_t kAxisStateIdle = 1;
 inline constexpr std::uint32_t kAxisStateClosedLoop = 8;
+// Axis error bits (0.5.x) the emulator raises; the driver reports any bit.
+inline constexpr std::uint32_t kAxisErrorMotorFailed = 0x40;
+inline constexpr std::uint32_t kAxisErrorWatchdogExpired = 0x800;
+inline constexpr std::uint32_t kAxisErrorEstopRequested = 0x4000;
 // Controller modes.
 inline constexpr std::int32_t kControlModeVelocity = 2;
 inline constexpr std::int32_t kInputModePassthrough = 1;
@@ -57,5 +63,17 @@ struct Feedback {
   EncoderEstimates estimates;
 };
 DecodeError decode(const CanFrame& frame, std::uint8_t node, Feedback& out);
+
+// The axis side (an ODrive, or its emulator): feedback out, commands in.
+CanFrame heartbeat(std::uint8_t node, const Heartbeat& h);
+CanFrame encoder_estimates(std::uint8_t node, const EncoderEstimates& e);
+struct CommandFrame {
+  Command command = Command::kEstop;
+  std::uint32_t requested_state = 0;                  // kSetAxisState
+  std::int32_t control_mode = 0, input_mode = 0;      // kSetControllerMode
+  float vel_turns_per_s = 0.0F, torque_ff_nm = 0.0F;  // kSetInputVel
+};
+// kNotFeedback here means: not one of the commands above (a feedback frame, or unused).
+DecodeError decode_command(const CanFrame& frame, std::uint8_t node, CommandFrame& out);
 
 }  // namespace colag::hal::can::odrive

@@ -60,7 +60,9 @@ class RecordingDrive final : public Drive {
     ++stops_;
     return Status::ok();
   }
+  DriveHealth health() const override { return health_; }
   void fail_with(Status s) { fail_status_ = s; }
+  void report(DriveHealth h) { health_ = h; }  // what the base says about itself
   const DriveCommand& last() const { return last_; }
   std::size_t commands() const { return commands_; }
   std::size_t stops() const { return stops_; }
@@ -68,6 +70,7 @@ class RecordingDrive final : public Drive {
  private:
   DriveCommand last_{};
   Status fail_status_{};
+  DriveHealth health_;
   std::size_t commands_ = 0;
   std::size_t stops_ = 0;
 };

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "colag/common/geometry.hpp"
+#include "colag/hal/can/base_config.hpp"
 #include "colag/sim/world/box_world.hpp"
 #include "colag/sim/world/world_profile.hpp"
 
@@ -66,8 +67,9 @@ struct MissionConfig {
   double predict_horizon_m = 2.0;  // UGV collision-prediction horizon (straight-line distance)
   int threads = 2;  // cores the simulation may use (1..8); the results do not depend on it
   FaultConfig faults;
-  ClockConfig clocks;                             // none set: the world profile's
-  sim::WorldProfile world;                        // ideal (the paper's) or field
+  ClockConfig clocks;       // none set: the world profile's
+  sim::WorldProfile world;  // ideal (the paper's) or field
+  hal::can::BaseProtocol ugv_base = hal::can::BaseProtocol::kColag;  // the UGVs' CAN protocol
   std::function<void(double fraction)> progress;  // called every simulated second (optional)
   std::function<void(const std::string&)> warn;   // each warning about the map (optional)
 };

@@ -1,14 +1,15 @@
 #pragma once
-// A simulated differential-drive UGV and its motor controller. The controller speaks the real
-// CAN protocol (hal/can): it takes SPEED_COMMAND frames (zero after 200 ms without one),
-// drives the wheels towards them within the acceleration limit, and reports ENCODER_COUNTS
-// and WHEEL_SPEEDS at 50 Hz. The true motion gets 1 % multiplicative noise on v and omega (the
-// paper's simulation); the encoders measure it with white noise sigma_v, sigma_omega per
-// sample (the paper's odometry noise), applied only while the wheels turn.
+// A simulated differential-drive UGV and its motor controllers. The controllers speak the base's
+// real CAN protocol (BaseEmulator: ours, ODrive or AgileX): they take its commands (zero after
+// 200 ms without one), drive the wheels towards them within the acceleration limit, and report
+// the protocol's feedback every step (50 Hz). The true motion gets 1 % multiplicative noise on v
+// and omega (the paper's simulation); the encoders measure it with white noise sigma_v, sigma_omega
+// per sample (the paper's odometry noise), applied only while the wheels turn.
 #include "colag/common/random.hpp"
 #include "colag/common/ugv_motion_model.hpp"
+#include "colag/hal/can/base_config.hpp"
 #include "colag/hal/can/can_wheel_odometry.hpp"
-#include "colag/hal/can/wheel_protocol.hpp"
+#include "colag/sim/world/base_emulator.hpp"
 
 namespace colag::sim {
 
@@ -36,7 +37,7 @@ struct UgvBodyConfig {
   // and the UGV keeps clear, a little above the body's top: a conservative collision test.
   double band_low_m = 0.1;
   double band_high_m = 0.7;
-  hal::can::WheelProtocolConfig protocol;
+  hal::can::BaseConfig base;  // the protocol its controllers speak
   hal::can::WheelGeometry geometry;
   double wheel_accel_mps2 = 1.0;
   double motion_noise_fraction = 0.01;
@@ -49,12 +50,16 @@ struct UgvBodyConfig {
 class UgvBody {
  public:
   UgvBody(const UgvBodyConfig& config, const Pose2& start, std::uint64_t seed)
-      : config_(config), pose_(start), rng_(seed) {}
+      : config_(config),
+        pose_(start),
+        rng_(seed),
+        controller_(config.base, config.geometry, config.command_timeout) {}
 
   // Advances dt: reads commands from `bus` (the controller's side), moves, sends encoder
   // frames. A frozen body (after a collision) no longer moves.
   void step(TimePoint now, double dt, hal::CanBus& bus);
   void freeze() { frozen_ = true; }
+  BaseEmulator& controller() { return controller_; }
 
   const Pose2& pose() const { return pose_; }
   double travelled_m() const { return travelled_; }
@@ -68,10 +73,7 @@ class UgvBody {
   Rng rng_;
   double left_ = 0.0, right_ = 0.0;  // true wheel speeds
   double last_v_ = 0.0;              // the wheels' mean speed one step ago (for the slip)
-  double target_left_ = 0.0, target_right_ = 0.0;
-  TimePoint last_command_ = kNever;
-  double ticks_left_ = 0.0, ticks_right_ = 0.0;  // measured, fractional
-  std::uint8_t alive_counts_ = 0, alive_speeds_ = 0;
+  BaseEmulator controller_;
   double travelled_ = 0.0;
   bool frozen_ = false;
 };

@@ -9,7 +9,7 @@
 #include <optional>
 #include <string>
 
-#include "colag/hal/can/can_wheel_odometry.hpp"
+#include "colag/hal/can/can_base.hpp"
 #include "colag/hal/linux/socketcan_bus.hpp"
 #include "colag/hal/sim/sim_devices.hpp"
 #include "colag/platform/dds/dds_transport.hpp"
@@ -34,6 +34,8 @@ class UgvBoard {
   // Motors to zero (sent twice: one lost frame must not leave them running; the controller's own
   // command timeout is the last line). False when the frames could not be sent.
   bool stop_motors();
+  // The program ends: motors to zero, then the base left safe unattended (ODrive axes idle).
+  void shutdown_base();
   // One line of CAN and odometry counters, for the log at exit.
   void print_counters(const char* program) const;
 
@@ -50,8 +52,7 @@ class UgvBoard {
   std::optional<hal::sim::SimLink> sim_link_;
   std::optional<hal::sim::SimCanBus> sim_bus_;
   hal::CanBus* bus_ = nullptr;
-  std::optional<hal::can::CanWheelOdometry> odometry_;
-  std::optional<hal::can::CanDrive> drive_;
+  std::optional<hal::can::CanBase> base_;  // the wheels: odometry and drive
   platform::dds::DdsTransport dds_;
   std::optional<platform::TransportPump> pump_;
   std::optional<UgvNavTask> task_;

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "colag/board/config.hpp"
+#include "colag/hal/can/base_config.hpp"
 #include "colag/hal/can/can_wheel_odometry.hpp"
 #include "colag/ugv/ugv_nav_config.hpp"
 
@@ -13,7 +14,7 @@ struct UgvBoardConfig {
   board::CommonBoardConfig common;
   UgvNavConfig nav;  // with the schedule table (rates: changes its periods)
   std::string can_interface = "can0";
-  hal::can::WheelProtocolConfig protocol;
+  hal::can::BaseConfig base;  // can.protocol and its section
   hal::can::WheelGeometry wheels;
   // Its last pose, kept across a restart of the program (resume_state.hpp); empty: not kept.
   std::string state_file;

@@ -1,0 +1,180 @@
+#include "colag/hal/can/odrive_base.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "colag/hal/can/diff_drive.hpp"
+
+namespace colag::hal::can {
+
+namespace {
+constexpr Duration kSendWindow = std::chrono::milliseconds(5);
+
+bool in_error(const odrive::Heartbeat& b) {
+  return b.axis_error != 0 || b.motor_error || b.encoder_error || b.controller_error;
+}
+}  // namespace
+
+double OdriveBase::wheel_m_per_motor_turn() const {
+  return 2.0 * M_PI * geometry_.wheel_radius_m / config_.motor_turns_per_wheel_turn;
+}
+
+void OdriveBase::read_bus() {
+  CanFrame f;
+  while (bus_.receive(f)) {
+    ++counters_.frames;
+    for (Axis& a : axes_) {
+      odrive::Feedback fb;
+      const odrive::DecodeError e = odrive::decode(f, a.config.node, fb);
+      if (e == odrive::DecodeError::kWrongDlc) ++counters_.bad_frames;
+      if (e != odrive::DecodeError::kNone) continue;
+      if (fb.command == odrive::Command::kHeartbeat) {
+        ++counters_.heartbeats;
+        a.beat = fb.heartbeat;
+        a.heard = f.stamp;
+      } else {
+        on_estimates(a, fb.estimates, f.stamp);
+      }
+    }
+  }
+}
+
+void OdriveBase::on_estimates(Axis& a, const odrive::EncoderEstimates& e, TimePoint stamp) {
+  if (!std::isfinite(e.pos_turns)) {
+    ++counters_.bad_frames;
+    return;
+  }
+  ++counters_.estimates;
+  a.pos_turns = a.config.direction * static_cast<double>(e.pos_turns);
+  a.pos_stamp = stamp;
+  if (!a.have_pos) a.used_turns = a.pos_turns;
+  a.have_pos = a.fresh = true;
+  if (axes_[0].fresh && axes_[1].fresh) make_sample();
+}
+
+void OdriveBase::make_sample() {
+  // Both axes reported since the last sample: their positions are absolute, so a lost frame
+  // loses no travel; the pair is stamped with the later of the two.
+  const TimePoint stamp = std::max(axes_[0].pos_stamp, axes_[1].pos_stamp);
+  axes_[0].fresh = axes_[1].fresh = false;
+  if (!have_sample_pair_) {
+    have_sample_pair_ = true;
+    last_sample_ = stamp;
+    return;
+  }
+  const double dt = to_seconds(stamp - last_sample_);
+  if (!(dt > 0.0)) {
+    ++counters_.implausible;  // time not advancing: keep the travel for the next pair
+    return;
+  }
+  const double m = wheel_m_per_motor_turn();
+  const WheelPair travel{(axes_[0].pos_turns - axes_[0].used_turns) * m,
+                         (axes_[1].pos_turns - axes_[1].used_turns) * m};
+  WheelOdometrySample s;
+  s.stamp = stamp;
+  if (twist_from_travel(travel, dt, geometry_, s)) {
+    if (pending_.push_overwrite(s)) ++counters_.overflowed;
+    ++counters_.samples;
+  } else {
+    ++counters_.implausible;  // a jump (an axis rebooted, an encoder glitch): start again here
+  }
+  for (Axis& a : axes_)
+    a.used_turns = a.pos_turns;
+  last_sample_ = stamp;
+}
+
+bool OdriveBase::poll(WheelOdometrySample& out) {
+  read_bus();
+  return pending_.pop_front(out);
+}
+
+Status OdriveBase::send(const CanFrame& f, TimePoint now) {
+  return bus_.send(f, now + kSendWindow);
+}
+
+void OdriveBase::keep_in_closed_loop(TimePoint now) {
+  const bool first = started_ == kNever;
+  if (first) started_ = now;
+  if (!first && !elapsed(now, last_request_, config_.request_period)) return;
+  for (const Axis& a : axes_) {
+    const bool ready = a.beat.axis_state == odrive::kAxisStateClosedLoop && !in_error(a.beat);
+    // A latched error stays until a person looks at it (a restart clears it if configured).
+    if (!first && (ready || in_error(a.beat))) continue;
+    const std::uint8_t n = a.config.node;
+    if (first && config_.clear_errors_at_start) (void)send(odrive::clear_errors(n), now);
+    (void)send(
+        odrive::set_controller_mode(n, odrive::kControlModeVelocity, odrive::kInputModePassthrough),
+        now);
+    (void)send(odrive::set_axis_state(n, odrive::kAxisStateClosedLoop), now);
+    ++counters_.closed_loop_requests;
+    last_request_ = now;
+  }
+}
+
+void OdriveBase::update_health(TimePoint now) {
+  const bool past_start = elapsed(now, started_, config_.ready_timeout);
+  health_ = {};
+  if (bus_.stats().bus_off) {
+    health_ = {msg::BaseFault::kBusOff, 0};
+    return;
+  }
+  for (const Axis& a : axes_) {
+    const bool silent = a.heard == kNever ? past_start : now - a.heard > config_.heartbeat_timeout;
+    if (silent) {
+      health_ = {msg::BaseFault::kBaseSilent, a.config.node};
+      return;
+    }
+  }
+  for (const Axis& a : axes_) {
+    if (in_error(a.beat)) {
+      health_ = {msg::BaseFault::kMotorError, a.beat.axis_error};
+      return;
+    }
+  }
+  for (const Axis& a : axes_) {
+    if (past_start && a.beat.axis_state != odrive::kAxisStateClosedLoop) {
+      health_ = {msg::BaseFault::kNotReady, a.beat.axis_state};
+      return;
+    }
+  }
+}
+
+Status OdriveBase::send_velocities(TimePoint now, double left_mps, double right_mps) {
+  const double per_turn = wheel_m_per_motor_turn();
+  const double v[2] = {left_mps, right_mps};
+  Status result;
+  for (int i = 0; i < 2; ++i) {
+    const auto turns = static_cast<float>(axes_[i].config.direction * v[i] / per_turn);
+    if (const Status s = send(odrive::set_input_vel(axes_[i].config.node, turns, 0.0F), now);
+        !s && result)
+      result = s;
+  }
+  return result;
+}
+
+Status OdriveBase::command(const DriveCommand& cmd) {
+  keep_in_closed_loop(cmd.stamp);
+  update_health(cmd.stamp);
+  if (!std::isfinite(cmd.v_mps) || !std::isfinite(cmd.omega_radps)) {
+    (void)send_velocities(cmd.stamp, 0.0, 0.0);
+    return {Errc::kInvalidArgument, "drive command not finite: stopped"};
+  }
+  // A faulty base gets zero whatever is asked: it must not lurch when the fault clears.
+  if (health_.fault != msg::BaseFault::kNone) return send_velocities(cmd.stamp, 0.0, 0.0);
+  const WheelPair w = wheel_speeds(cmd, geometry_);
+  return send_velocities(cmd.stamp, w.left, w.right);
+}
+
+Status OdriveBase::stop(TimePoint now) {
+  keep_in_closed_loop(now);
+  update_health(now);
+  return send_velocities(now, 0.0, 0.0);
+}
+
+void OdriveBase::shutdown(TimePoint now) {
+  (void)send_velocities(now, 0.0, 0.0);
+  for (const Axis& a : axes_)
+    (void)send(odrive::set_axis_state(a.config.node, odrive::kAxisStateIdle), now);
+}
+
+}  // namespace colag::hal::can
