@@ -1,15 +1,16 @@
-// The UGV board's CAN stack in the loop (scripts/hil): the real SocketCAN driver, wheel
-// odometry and drive under the real-time executor at 50 Hz, against colag_motor_emulator on
-// the same interface. It drives a profile (straight, turn, stop), integrates the encoder
-// odometry, and keeps the board's watchdog: encoder frames stale for > 60 ms => command zero
-// speed and report the fault. Exits 0 only if everything checked holds.
-// Robust to a slow (starved) VM: the profile starts at the emulator's first encoder frame, the
-// run lasts until the watchdog has tripped (at most --seconds), and the odometry is judged
-// against the wheels' true travel the emulator reports (--emulator-report), whatever commands
-// reached it and when. No encoder frame at all within --seconds is a precondition not met: exit
-// code 77 (a skip), with the reason.
+// The UGV board's CAN stack in the loop (scripts/hil): the real SocketCAN driver, the base's
+// driver of --protocol (colag, odrive or agilex_v2: wheel odometry and drive) under the real-time
+// executor at 50 Hz, against colag_motor_emulator speaking the same protocol on the interface. It
+// drives a profile (straight, turn, stop), integrates the encoder odometry, and keeps the board's
+// watchdog: encoder frames stale for > 60 ms => command zero speed and report the fault. Exits 0
+// only if everything checked holds. Robust to a slow (starved) VM: the profile starts at the
+// emulator's first encoder frame, the run lasts until the watchdog has tripped (at most --seconds),
+// and the odometry is judged against the wheels' true travel the emulator reports
+// (--emulator-report), whatever commands reached it and when. No encoder frame at all within
+// --seconds is a precondition not met: exit code 77 (a skip), with the reason.
 //
 //   colag_hil_ugv run [--interface vcan0] [--seconds 20] [--emulator-report FILE]
+//                     [--protocol colag|odrive|agilex_v2]
 //   colag_hil_ugv check-log FILE [--min-commands N]   (a `candump -L` log of the run)
 #include <chrono>
 #include <cmath>
@@ -21,7 +22,7 @@
 #include <string>
 #include <thread>
 
-#include "colag/hal/can/can_wheel_odometry.hpp"
+#include "colag/hal/can/can_base.hpp"
 #include "colag/hal/linux/socketcan_bus.hpp"
 #include "colag/hal/scripted/scripted_devices.hpp"
 #include "colag/hal/sim/can_link.hpp"
@@ -40,7 +41,8 @@ hal::DriveCommand profile(double t) {
 
 class CanStackTask final : public platform::Task {
  public:
-  CanStackTask(hal::CanBus& bus) : odometry_(bus, {}, {}), drive_(bus, {}, {}) {}
+  CanStackTask(hal::CanBus& bus, const hal::can::BaseConfig& base)
+      : base_(bus, base, {}), odometry_(base_.odometry()), drive_(base_.drive()) {}
   const char* name() const override { return "ugv_can"; }
   void step(TimePoint now) override {
     hal::WheelOdometrySample s;
@@ -72,7 +74,7 @@ class CanStackTask final : public platform::Task {
     c.stamp = now;
     if (!drive_.command(c)) ++send_failures_;
   }
-  void shutdown(TimePoint now) { (void)drive_.stop(now); }
+  void shutdown(TimePoint now) { drive_.shutdown(now); }
 
   double x_ = 0, y_ = 0, yaw_ = 0, distance_ = 0;
   std::uint64_t samples_ = 0, send_failures_ = 0;
@@ -80,8 +82,9 @@ class CanStackTask final : public platform::Task {
   bool tripped_ = false;
   Duration trip_delay_{};
   TimePoint tripped_at_{};
-  hal::can::CanWheelOdometry odometry_;
-  hal::can::CanDrive drive_;
+  hal::can::CanBase base_;
+  hal::WheelOdometry& odometry_;
+  hal::Drive& drive_;
 
  private:
   TimePoint start_{}, last_{};
@@ -92,11 +95,13 @@ class CanStackTask final : public platform::Task {
 struct Reference {
   double distance_m, yaw_rad;
 };
-Reference reference() {
+Reference reference(const hal::can::BaseConfig& base) {
   hal::scripted::ManualClock clock;
   hal::sim::SimCanLink link(clock);
-  hal::can::CanDrive drive(link.board(), {}, {});
+  hal::can::CanBase driver(link.board(), base, {});
+  hal::Drive& drive = driver.drive();
   sim::UgvBodyConfig cfg;
+  cfg.base = base;
   cfg.motion_noise_fraction = 0.0;
   cfg.odometry_noise = {};
   sim::UgvBody body(cfg, Pose2{}, 1);
@@ -123,18 +128,19 @@ bool read_report(const std::string& path, double max_wait_s, Reference& out) {
   return false;
 }
 
-int run(const std::string& interface, double max_s, const std::string& emulator_report) {
+int run(const std::string& interface, double max_s, const std::string& emulator_report,
+        const hal::can::BaseConfig& base) {
   platform::RealtimeExecutor exec;
   linux_hal::SocketCanConfig cfg;
   cfg.interface = interface;
-  (void)cfg.filters.push_back({0x101, 0x7FF});
-  (void)cfg.filters.push_back({0x102, 0x7FF});
+  for (const hal::can::IdFilter& f : hal::can::base_filters(base))
+    (void)cfg.filters.push_back({f.id, f.mask, f.extended});
   linux_hal::SocketCanBus bus(cfg, exec.clock());
   if (const Status s = bus.open(); !s) {
     std::fprintf(stderr, "hil_ugv: %s\n", s.message());
     return 1;
   }
-  CanStackTask task(bus);
+  CanStackTask task(bus, base);
   (void)exec.add({&task, std::chrono::milliseconds(20), std::chrono::milliseconds(10), {}});
   const platform::RealtimeSetup setup = exec.apply({.fifo_priority = 50, .lock_memory = true});
   if (!exec.init()) return 1;
@@ -154,7 +160,7 @@ int run(const std::string& interface, double max_s, const std::string& emulator_
 
   // The reference: the wheels' true travel, from the emulator when it reports it (whatever
   // commands it got, and when), else what the profile gives on the noise-free wheel model.
-  Reference ref = reference();
+  Reference ref = reference(base);
   const char* ref_name = "the simulated wheel model";
   if (!emulator_report.empty()) {
     if (!read_report(emulator_report, 5.0, ref)) {
@@ -164,7 +170,7 @@ int run(const std::string& interface, double max_s, const std::string& emulator_
     }
     ref_name = "the emulator's wheels";
   }
-  const auto& c = task.odometry_.counters();
+  const hal::can::BaseCounters c = task.base_.counters();
   const double trip_ms = to_seconds(task.trip_delay_) * 1e3;
   std::printf("hil_ugv: SCHED_FIFO %s, mlockall %s\n", setup.fifo ? "yes" : "no",
               setup.memory_lock ? "yes" : "no");
@@ -172,9 +178,9 @@ int run(const std::string& interface, double max_s, const std::string& emulator_
               static_cast<unsigned long long>(task.samples_), task.distance_, task.x_, task.y_,
               task.yaw_);
   std::printf(
-      "hil_ugv: frames %llu, lost %llu, bad crc %llu, implausible %llu, send failures %llu\n",
-      static_cast<unsigned long long>(c.frames), static_cast<unsigned long long>(c.lost_frames),
-      static_cast<unsigned long long>(c.bad_checksum),
+      "hil_ugv: %s: frames %llu, lost %llu, bad %llu, implausible %llu, send failures %llu\n",
+      hal::can::to_string(base.protocol), static_cast<unsigned long long>(c.frames),
+      static_cast<unsigned long long>(c.lost), static_cast<unsigned long long>(c.bad_frames),
       static_cast<unsigned long long>(c.implausible),
       static_cast<unsigned long long>(task.send_failures_));
   std::printf("hil_ugv: watchdog %s%s%.0f ms after the last encoder frame\n",
@@ -191,7 +197,7 @@ int run(const std::string& interface, double max_s, const std::string& emulator_
   expect(std::abs(task.distance_ - ref.distance_m) < 0.05 * ref.distance_m + 0.02,
          "odometry distance within 5 % + 2 cm of the reference");
   expect(std::abs(task.yaw_ - ref.yaw_rad) < 0.05, "odometry heading within 0.05 rad");
-  expect(c.bad_checksum == 0 && c.wrong_dlc == 0 && c.unknown_id == 0, "no malformed frames");
+  expect(c.bad_frames == 0, "no malformed frames");
   expect(task.samples_ > 150, "encoder samples at ~50 Hz");
   expect(task.tripped_ && trip_ms <= 100.0, "watchdog trips within 100 ms of the last frame");
   return ok ? 0 : 1;
@@ -255,16 +261,22 @@ int main(int argc, char** argv) {
   if (mode == "run") {
     std::string interface = "vcan0", report;
     double max_s = 20.0;
+    hal::can::BaseConfig base;
     for (int i = 2; i + 1 < argc; i += 2) {
       if (std::strcmp(argv[i], "--interface") == 0) interface = argv[i + 1];
       if (std::strcmp(argv[i], "--seconds") == 0) max_s = std::atof(argv[i + 1]);
       if (std::strcmp(argv[i], "--emulator-report") == 0) report = argv[i + 1];
+      if (std::strcmp(argv[i], "--protocol") == 0 &&
+          !hal::can::parse_base_protocol(argv[i + 1], base.protocol)) {
+        std::fprintf(stderr, "hil_ugv: --protocol: one of %s\n", hal::can::kBaseProtocolNames);
+        return 2;
+      }
     }
-    return run(interface, max_s, report);
+    return run(interface, max_s, report, base);
   }
   std::fprintf(stderr,
-               "usage: %s run [--interface vcan0] [--seconds 20] [--emulator-report FILE] | "
-               "check-log FILE [--min-commands N]\n",
+               "usage: %s run [--interface vcan0] [--seconds 20] [--emulator-report FILE] "
+               "[--protocol colag|odrive|agilex_v2] | check-log FILE [--min-commands N]\n",
                argv[0]);
   return 2;
 }

@@ -1,8 +1,9 @@
 // A motor controller on a real CAN interface, for hardware-in-the-loop runs: the simulator's
-// UgvBody (the wheel model and the protocol's controller side) stepped at 50 Hz in real time
-// on SocketCAN. Stops after --seconds (so that the board's watchdog can be seen to trip) and,
-// with --report FILE, writes the wheels' true travel there ("distance_m yaw_rad"): what the
-// board's odometry is judged against, whatever commands reached it and when.
+// UgvBody (the wheel model and the controller side of the protocol --protocol names: colag,
+// odrive or agilex_v2, with their default ids) stepped at 50 Hz in real time on SocketCAN. Stops
+// after --seconds (so that the board's watchdog can be seen to trip) and, with --report FILE,
+// writes the wheels' true travel there ("distance_m yaw_rad"): what the board's odometry is judged
+// against, whatever commands reached it and when.
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -10,6 +11,7 @@
 #include <string>
 #include <thread>
 
+#include "colag/hal/can/can_base.hpp"
 #include "colag/hal/linux/socketcan_bus.hpp"
 #include "colag/platform/monotonic_clock.hpp"
 #include "colag/sim/world/ugv_body.hpp"
@@ -19,6 +21,7 @@ int main(int argc, char** argv) {
   std::string interface = "vcan0";
   double run_s = 5.0;
   std::string report;
+  hal::can::BaseConfig base;
   for (int i = 1; i + 1 < argc; i += 2) {
     if (std::strcmp(argv[i], "--interface") == 0) {
       interface = argv[i + 1];
@@ -26,8 +29,13 @@ int main(int argc, char** argv) {
       run_s = std::atof(argv[i + 1]);
     } else if (std::strcmp(argv[i], "--report") == 0) {
       report = argv[i + 1];
+    } else if (std::strcmp(argv[i], "--protocol") == 0 &&
+               hal::can::parse_base_protocol(argv[i + 1], base.protocol)) {
+      // parsed into base.protocol
     } else {
-      std::fprintf(stderr, "usage: %s [--interface vcan0] [--seconds 5] [--report FILE]\n",
+      std::fprintf(stderr,
+                   "usage: %s [--interface vcan0] [--seconds 5] [--report FILE] "
+                   "[--protocol colag|odrive|agilex_v2]\n",
                    argv[0]);
       return 2;
     }
@@ -35,13 +43,15 @@ int main(int argc, char** argv) {
   platform::MonotonicClock clock;
   linux_hal::SocketCanConfig cfg;
   cfg.interface = interface;
-  (void)cfg.filters.push_back({0x201, 0x7FF});  // SPEED_COMMAND only
+  for (const hal::can::IdFilter& f : hal::can::command_filters(base))  // the host's commands
+    (void)cfg.filters.push_back({f.id, f.mask, f.extended});
   linux_hal::SocketCanBus bus(cfg, clock);
   if (const Status s = bus.open(); !s) {
     std::fprintf(stderr, "motor emulator: %s\n", s.message());
     return 1;
   }
   sim::UgvBodyConfig body_cfg;
+  body_cfg.base = base;
   body_cfg.motion_noise_fraction = 0.0;  // a deterministic wheel model; encoder noise stays
   sim::UgvBody body(body_cfg, Pose2{}, 7);
   const Duration period = std::chrono::milliseconds(20);

@@ -118,7 +118,8 @@ void UgvNavTask::read_odometry(TimePoint now) {
   // The base's own faults (e-stop, motor errors, bus-off, ...): the same safe stop.
   const hal::DriveHealth base = drive_.health();
   const bool base_fault = base.fault != msg::BaseFault::kNone;
-  if (base_fault && base.fault != base_fault_.fault) ++health_.base_faults;
+  if (base_fault && base.fault != drive_fault_seen_) ++health_.base_faults;
+  drive_fault_seen_ = base.fault;
   base_fault_ = silent ? hal::DriveHealth{msg::BaseFault::kOdometrySilent, 0} : base;
   fault_ = silent || base_fault;
 }

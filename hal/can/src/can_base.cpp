@@ -25,6 +25,25 @@ IdFilters base_filters(const BaseConfig& config) {
   return f;
 }
 
+IdFilters command_filters(const BaseConfig& config) {
+  IdFilters f;
+  switch (config.protocol) {
+    case BaseProtocol::kColag: {
+      const WheelProtocolConfig& p = config.colag;
+      (void)f.push_back({p.command_id, p.extended_ids ? 0x1FFFFFFFu : 0x7FFu, p.extended_ids});
+      break;
+    }
+    case BaseProtocol::kOdrive:
+      return base_filters(config);  // a node's commands share its id range with its feedback
+    case BaseProtocol::kAgilexV2:
+      (void)f.push_back({agilex::kMotionCommandId, 0x7FFu, false});
+      (void)f.push_back({agilex::kControlModeId, 0x7FFu, false});
+      (void)f.push_back({agilex::kStateResetId, 0x7FFu, false});
+      break;
+  }
+  return f;
+}
+
 CanBase::CanBase(CanBus& bus, const BaseConfig& config, const WheelGeometry& wheels) {
   switch (config.protocol) {
     case BaseProtocol::kColag:

@@ -162,8 +162,9 @@ class UgvNavTask {
   msg::BlockedReason blocked_reason_ = msg::BlockedReason::kNone;  // set with mode_
   bool fault_ = false;
   hal::DriveHealth base_fault_;  // why fault_ (odometry silent, or the base's own fault)
-  msg::UavFlight uav_flight_ = msg::UavFlight::kInControl;  // as the UAV's last sample said
-  TimePoint last_uav_stamp_ = kNever;                       // its stamp (fleet time)
+  msg::BaseFault drive_fault_seen_ = msg::BaseFault::kNone;  // the base's, last period
+  msg::UavFlight uav_flight_ = msg::UavFlight::kInControl;   // as the UAV's last sample said
+  TimePoint last_uav_stamp_ = kNever;                        // its stamp (fleet time)
   bool stopped_for_support_ = false;
   bool awaiting_fix_ = false;  // at the goal by its estimate, not sure enough to have arrived
   bool stopped_for_robot_ = false;

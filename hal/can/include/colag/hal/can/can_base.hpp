@@ -20,6 +20,8 @@ using IdFilters = StaticVector<IdFilter, 4>;
 
 // The frames the base sends us (nothing else needs to wake the board up).
 IdFilters base_filters(const BaseConfig& config);
+// The frames we send the base: what an emulator of the device listens to.
+IdFilters command_filters(const BaseConfig& config);
 
 // What every protocol's driver counts, for the log at exit.
 struct BaseCounters {
