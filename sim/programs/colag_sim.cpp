@@ -66,6 +66,14 @@ void print_table(const mission::MissionOutcome& o) {
                 static_cast<unsigned long long>(o.team_located),
                 static_cast<unsigned long long>(o.team_returns_dropped));
   }
+  if (o.base_fault.injected) {
+    const mission::BaseFaultOutcome& f = o.base_fault;
+    std::printf(
+        "  base fault (UGV 0)  firmware in fault after %.2f s, wheels still after %.2f s, "
+        "%s\n",
+        f.firmware_fault_after_s, f.still_after_s,
+        f.max_speed_after_still < 0.01 ? "never moved again" : "MOVED AGAIN");
+  }
   std::printf("  simulated %.1f s in %.2f s wall (%.0fx real time)\n", o.sim_time_s, o.wall_time_s,
               o.sim_time_s / std::max(o.wall_time_s, 1e-9));
 }
@@ -122,6 +130,11 @@ int run(int argc, char** argv) {
   faults->add_option("--rpe-blackout", rpe_blackout, "T0:T1 s: no relative poses");
   faults->add_option("--odom-bias", odom_bias_pct, "wheel-encoder scale error, %")
       ->check(CLI::Range(-49.0, 49.0));
+  faults
+      ->add_option("--base-fault-at", cfg.faults.base_fault_at_s,
+                   "UGV 0's base faults at this time, s (--ugv-base: an ODrive motor error, an "
+                   "AgileX e-stop, our controller silent); UGV 0 must stop and stay stopped")
+      ->check(sim::positive_up_to(1e6));
   // Clocks: every robot keeps its own (fleet time is the UAV's; the UGVs learn it over DDS).
   std::string clock_step;
   auto* clocks = app.add_option_group("clocks", "each robot's own clock");

@@ -250,6 +250,37 @@ class StillWatch final : public platform::Task {
   const std::vector<UgvStack>& ugvs_;
 };
 
+// FaultConfig::base_fault_at_s: UGV 0's base faults; how long until its firmware says so and
+// its wheels stand, and whether they move again.
+class BaseFaultWatch final : public platform::Task {
+ public:
+  BaseFaultWatch(sim::SimWorld& world, const UgvStack& ugv, double at_s)
+      : world_(world), ugv_(ugv), at_(TimePoint{} + seconds(at_s)) {}
+  const char* name() const override { return "base_fault"; }
+  void step(TimePoint now) override {
+    if (now < at_) return;
+    if (!out.injected) {
+      world_.set_base_fault(0, true);
+      out.injected = true;
+    }
+    const double since = to_seconds(now - at_);
+    if (out.firmware_fault_after_s < 0.0 && ugv_.task->mode() == msg::UgvMode::kFault)
+      out.firmware_fault_after_s = since;
+    const double speed = world_.ugv(0).speed_mps();
+    if (out.still_after_s >= 0.0) {
+      out.max_speed_after_still = std::max(out.max_speed_after_still, std::abs(speed));
+    } else if (std::abs(speed) < 0.01) {
+      out.still_after_s = since;
+    }
+  }
+  BaseFaultOutcome out;
+
+ private:
+  sim::SimWorld& world_;
+  const UgvStack& ugv_;
+  TimePoint at_;
+};
+
 }  // namespace
 
 // Everything a mission owns, in construction order (destroyed in reverse).
@@ -264,6 +295,7 @@ struct Mission::Parts {
   std::unique_ptr<sim::SimWorld> world;
   std::unique_ptr<WorldTask> world_task;
   std::unique_ptr<StillWatch> still;
+  std::unique_ptr<BaseFaultWatch> base_fault;
   std::unique_ptr<platform::TransportPump> pump;
   std::unique_ptr<uav::UavSupervisorTask> uav;
   std::unique_ptr<ReferenceFrameTask> reference;
@@ -381,6 +413,11 @@ std::unique_ptr<Mission> Mission::compose(const MissionConfig& cfg, std::string&
   };
   p->still = std::make_unique<StillWatch>(*p->world, p->ugvs);
   if (st) st = p->ex->add({p->still.get(), 20ms, 1ms});
+  if (cfg.faults.base_fault_at_s >= 0.0) {
+    p->base_fault =
+        std::make_unique<BaseFaultWatch>(*p->world, p->ugvs.front(), cfg.faults.base_fault_at_s);
+    if (st) st = p->ex->add({p->base_fault.get(), 20ms, 1ms});
+  }
   if (p->uav && st) st = add_rows(p->uav->rows(), p->clocks[0]);
   if (p->reference && st) st = p->ex->add(on_clock({p->reference.get(), 20ms, 1ms}, p->clocks[0]));
   for (int i = 0; i < cfg.ugvs && st; ++i) {
@@ -517,6 +554,7 @@ MissionOutcome Mission::collect(MissionTrace* trace) const {
   out.config.warn = nullptr;
   out.warnings = p.warnings;
   out.ugvs = p.outcomes;
+  if (p.base_fault) out.base_fault = p.base_fault->out;
   out.ugvs.resize(p.ugvs.size());
   const platform::Schedule& table = p.ex->schedule();
   for (std::size_t i = 0; i < table.size(); ++i) {

@@ -171,6 +171,15 @@ std::string to_json(const MissionOutcome& o, bool include_wall_time) {
   s["collisions"] = o.collisions;
   s["all_reached"] = o.all_reached;
   j["summary"] = s;
+  if (o.base_fault.injected) {
+    nlohmann::ordered_json f;
+    f["ugv"] = 0;
+    f["at_s"] = o.config.faults.base_fault_at_s;
+    f["firmware_fault_after_s"] = o.base_fault.firmware_fault_after_s;
+    f["still_after_s"] = o.base_fault.still_after_s;
+    f["max_speed_after_still_mps"] = o.base_fault.max_speed_after_still;
+    j["base_fault"] = f;
+  }
   j["sim_time_s"] = o.sim_time_s;
   if (include_wall_time) {
     j["wall_time_s"] = o.wall_time_s;

@@ -155,6 +155,10 @@ hal::Lidar& SimWorld::uav_lidar() {
 hal::RelativePoseSensor& SimWorld::uav_camera() {
   return *camera_;
 }
+void SimWorld::set_base_fault(int i, bool on) {
+  ugvs_[static_cast<std::size_t>(i)]->body.controller().set_fault(on);
+}
+
 const UgvBody& SimWorld::ugv(int i) const {
   return ugvs_.at(static_cast<std::size_t>(i))->body;
 }

@@ -36,6 +36,9 @@ struct FaultConfig {
   TimeWindow uav_blackout;  // odometry, relative poses, map patches and plans all lost
   TimeWindow rpe_blackout;  // relative poses lost
   double odom_bias = 0.0;   // the encoders report (1 + bias) x the true motion
+  // UGV 0's base reports its own fault at this mission time (< 0: never): an ODrive axis's motor
+  // error, an AgileX e-stop, our controller falling silent (what --ugv-base emulates).
+  double base_fault_at_s = -1.0;
   bool any() const {
     return loss > 0.0 || latency_ms > 0.0 || jitter_ms > 0.0 || !blackout.empty() ||
            !uav_blackout.empty() || !rpe_blackout.empty() || odom_bias != 0.0;

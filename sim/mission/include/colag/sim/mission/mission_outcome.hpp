@@ -65,6 +65,14 @@ struct TaskTime {
   double longest_ms = 0.0;
 };
 
+// With FaultConfig::base_fault_at_s: how UGV 0 and its firmware answered its base's fault.
+struct BaseFaultOutcome {
+  bool injected = false;
+  double firmware_fault_after_s = -1.0;  // until its firmware said kFault (< 0: never)
+  double still_after_s = -1.0;           // until its wheels stood (< 0: never)
+  double max_speed_after_still = 0.0;    // m/s: it must not move again
+};
+
 struct MissionOutcome {
   MissionConfig config;
   std::vector<std::string> warnings;  // about the map (see map_checks.hpp)
@@ -91,6 +99,7 @@ struct MissionOutcome {
   // returns kept out of the map as a live UGV's.
   std::uint64_t team_located = 0;
   std::uint64_t team_returns_dropped = 0;
+  BaseFaultOutcome base_fault;
 };
 
 // What the mission figure draws.

@@ -98,6 +98,8 @@ class SimWorld {
   const BoxWorld& world() const { return world_; }
   int ugv_count() const { return static_cast<int>(ugvs_.size()); }
   const UgvBody& ugv(int i) const;
+  // Fault injection: UGV i's base reports its own fault (BaseEmulator::set_fault).
+  void set_base_fault(int i, bool on);
   double min_clearance_m(int i) const;
   // The frame the UAV's odometry (so its map, and the UGVs' estimates) is in: the world's
   // without a UAV.
