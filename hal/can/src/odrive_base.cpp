@@ -96,12 +96,15 @@ void OdriveBase::keep_in_closed_loop(TimePoint now) {
   const bool first = started_ == kNever;
   if (first) started_ = now;
   if (!first && !elapsed(now, last_request_, config_.request_period)) return;
-  for (const Axis& a : axes_) {
+  for (Axis& a : axes_) {
     const bool ready = a.beat.axis_state == odrive::kAxisStateClosedLoop && !in_error(a.beat);
     // A latched error stays until a person looks at it (a restart clears it if configured).
     if (!first && (ready || in_error(a.beat))) continue;
     const std::uint8_t n = a.config.node;
-    if (first && config_.clear_errors_at_start) (void)send(odrive::clear_errors(n), now);
+    if (first && config_.clear_errors_at_start) {
+      (void)send(odrive::clear_errors(n), now);
+      a.beat = {};  // its errors as last heard are the ones being cleared
+    }
     (void)send(
         odrive::set_controller_mode(n, odrive::kControlModeVelocity, odrive::kInputModePassthrough),
         now);
