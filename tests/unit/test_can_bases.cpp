@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "allocation_counter.hpp"
 #include "colag/hal/can/agilex_protocol.hpp"
 #include "colag/hal/can/can_base.hpp"
 #include "colag/hal/can/odrive_protocol.hpp"
@@ -276,4 +277,20 @@ TEST(CanBase, FiltersPassExactlyTheBasesFeedback) {
   cfg.protocol = BaseProtocol::kAgilexV2;
   for (const IdFilter& x : base_filters(cfg))
     EXPECT_TRUE(x.id == agilex::kSystemStateId || x.id == agilex::kOdometryId);
+}
+
+TEST(CanBase, DriversAllocateNothingWhileDriving) {
+  for (const BaseProtocol p :
+       {BaseProtocol::kColag, BaseProtocol::kOdrive, BaseProtocol::kAgilexV2}) {
+    Rig rig(p);
+    rig.run(1.0, 0.4);  // started: closed loop / CAN mode, odometry flowing
+    std::uint64_t allocations = 0;
+    {
+      test::AllocationCounter counter;
+      rig.run(2.0, 0.3, 0.2);
+      allocations = counter.count();
+    }
+    EXPECT_EQ(allocations, 0u) << to_string(p);
+    EXPECT_GT(rig.samples, 100) << to_string(p);
+  }
 }
