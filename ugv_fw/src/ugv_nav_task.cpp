@@ -89,7 +89,7 @@ void UgvNavTask::control_step(TimePoint now) {
   drive(now, dt);
   // Standing still before the goal is waiting, whatever the reason (see waiting.hpp): by the
   // wheels, which brake and pull away as the robot does (the command leads them).
-  if (!arrived_ && (still_speed_ < kStillSpeed_mps || fault_)) {
+  if (!arrived_ && (still_speed_ < kStillSpeed_mps || faulty())) {
     const WaitPart part = wait_part(mode_, blocked_reason_, health_.plans > health_.plan_failures,
                                     !trajectory_.empty());
     waiting_parts_[static_cast<std::size_t>(part)] += seconds(dt);
@@ -114,14 +114,12 @@ void UgvNavTask::read_odometry(TimePoint now) {
   const TimePoint last = odometry_.last_sample_time();
   const bool silent = last == TimePoint{} ? now - started_ > config_.odometry_startup_grace
                                           : now - last > config_.odometry_timeout;
-  if (silent && !fault_) ++health_.watchdog_trips;
+  if (silent && !faulty()) ++health_.watchdog_trips;
   // The base's own faults (e-stop, motor errors, bus-off, ...): the same safe stop.
   const hal::DriveHealth base = drive_.health();
-  const bool base_fault = base.fault != msg::BaseFault::kNone;
-  if (base_fault && base.fault != drive_fault_seen_) ++health_.base_faults;
+  if (base.fault != msg::BaseFault::kNone && base.fault != drive_fault_seen_) ++health_.base_faults;
   drive_fault_seen_ = base.fault;
   base_fault_ = silent ? hal::DriveHealth{msg::BaseFault::kOdometrySilent, 0} : base;
-  fault_ = silent || base_fault;
 }
 
 void UgvNavTask::read_relative_poses(TimePoint now) {
@@ -230,7 +228,7 @@ void UgvNavTask::command(TimePoint now, double v, double omega) {
 void UgvNavTask::drive(TimePoint now, double dt) {
   // A relative pose came: it is sure enough now, or it learnt that it is not there yet.
   if (awaiting_fix_ && sure_of_position()) awaiting_fix_ = false;
-  if (fault_) {
+  if (faulty()) {
     mode_ = msg::UgvMode::kFault;
   } else if (uav_flight_ != msg::UavFlight::kInControl && ekf_.initialized() && !arrived_) {
     // Its flight controller failed safe, was taken over or lands: no support is coming and the
@@ -314,7 +312,7 @@ void UgvNavTask::planning_step(TimePoint now) {
   // robot stands on it.
   (void)map_.free_under(ekf_.pose().p, config_.body_radius_m);
   collect_others(now);
-  if (!arrived_ && !fault_ && replan_needed(now)) replan(now);
+  if (!arrived_ && !faulty() && replan_needed(now)) replan(now);
   predict_and_request(now);
   publish_status(now);
 }
@@ -476,7 +474,7 @@ bool UgvNavTask::sure_of_position() const {
 }
 
 msg::BlockedReason UgvNavTask::standing_reason() const {
-  if (arrived_ || fault_) return msg::BlockedReason::kNone;  // done, or its own mode
+  if (arrived_ || faulty()) return msg::BlockedReason::kNone;  // done, or its own mode
   if (no_path_ || trajectory_.empty()) return msg::BlockedReason::kNoPath;
   if (stopped_for_support_ || awaiting_fix_) return msg::BlockedReason::kNotCleared;
   if (stopped_for_robot_) return msg::BlockedReason::kRobotInTheWay;

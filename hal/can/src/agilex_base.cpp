@@ -8,8 +8,6 @@
 namespace colag::hal::can {
 
 namespace {
-constexpr Duration kSendWindow = std::chrono::milliseconds(5);
-
 std::int16_t to_i16(double v) {
   return static_cast<std::int16_t>(std::lround(std::clamp(v, -32767.0, 32767.0)));
 }
@@ -64,12 +62,13 @@ void AgilexBase::keep_in_can_mode(TimePoint now) {
   const bool first = started_ == kNever;
   if (first) {
     started_ = now;
-    if (config_.clear_errors_at_start) (void)bus_.send(agilex::state_reset(), now + kSendWindow);
+    if (config_.clear_errors_at_start)
+      (void)bus_.send(agilex::state_reset(), now + kCommandSendWindow);
   } else if (state_.control_mode == agilex::kControlModeCan ||
              !elapsed(now, last_request_, config_.request_period)) {
     return;
   }
-  (void)bus_.send(agilex::control_mode(agilex::kControlModeCan), now + kSendWindow);
+  (void)bus_.send(agilex::control_mode(agilex::kControlModeCan), now + kCommandSendWindow);
   ++counters_.mode_requests;
   last_request_ = now;
 }
@@ -99,7 +98,7 @@ Status AgilexBase::send_motion(TimePoint now, double v, double omega) {
   agilex::MotionCommand m;
   m.linear_mmps = to_i16(v * 1000.0);
   m.angular_mradps = to_i16(omega * 1000.0);
-  return bus_.send(agilex::encode(m), now + kSendWindow);
+  return bus_.send(agilex::encode(m), now + kCommandSendWindow);
 }
 
 Status AgilexBase::command(const DriveCommand& cmd) {

@@ -42,8 +42,7 @@ void CanWheelOdometry::read_bus() {
       const std::int32_t dr = tick_delta(last_counts_.right_ticks, c.right_ticks);
       const double dt = to_seconds(f.stamp - last_stamp_);
       const std::int32_t limit = geometry_.max_ticks_per_frame * (gap + 1);
-      const double m_per_tick =
-          2.0 * M_PI * geometry_.wheel_radius_m / geometry_.ticks_per_revolution;
+      const double m_per_tick = geometry_.metres_per_tick();
       WheelOdometrySample s;
       s.stamp = f.stamp;
       if (std::abs(dl) > limit || std::abs(dr) > limit ||
@@ -71,7 +70,7 @@ Status CanDrive::send(TimePoint now, double left, double right, bool enable) {
   cmd.right_mmps = static_cast<std::int16_t>(std::lround(std::clamp(right, -30.0, 30.0) * 1000.0));
   cmd.enable = enable;
   cmd.alive = alive_++;
-  return bus_.send(encode(cmd, protocol_), now + std::chrono::milliseconds(5));
+  return bus_.send(encode(cmd, protocol_), now + kCommandSendWindow);
 }
 
 Status CanDrive::command(const DriveCommand& cmd) {

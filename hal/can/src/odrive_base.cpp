@@ -8,16 +8,10 @@
 namespace colag::hal::can {
 
 namespace {
-constexpr Duration kSendWindow = std::chrono::milliseconds(5);
-
 bool in_error(const odrive::Heartbeat& b) {
   return b.axis_error != 0 || b.motor_error || b.encoder_error || b.controller_error;
 }
 }  // namespace
-
-double OdriveBase::wheel_m_per_motor_turn() const {
-  return 2.0 * M_PI * geometry_.wheel_radius_m / config_.motor_turns_per_wheel_turn;
-}
 
 void OdriveBase::read_bus() {
   CanFrame f;
@@ -67,7 +61,7 @@ void OdriveBase::make_sample() {
     ++counters_.implausible;  // time not advancing: keep the travel for the next pair
     return;
   }
-  const double m = wheel_m_per_motor_turn();
+  const double m = metres_per_motor_turn(config_, geometry_);
   const WheelPair travel{(axes_[0].pos_turns - axes_[0].used_turns) * m,
                          (axes_[1].pos_turns - axes_[1].used_turns) * m};
   WheelOdometrySample s;
@@ -89,7 +83,7 @@ bool OdriveBase::poll(WheelOdometrySample& out) {
 }
 
 Status OdriveBase::send(const CanFrame& f, TimePoint now) {
-  return bus_.send(f, now + kSendWindow);
+  return bus_.send(f, now + kCommandSendWindow);
 }
 
 void OdriveBase::keep_in_closed_loop(TimePoint now) {
@@ -143,7 +137,7 @@ void OdriveBase::update_health(TimePoint now) {
 }
 
 Status OdriveBase::send_velocities(TimePoint now, double left_mps, double right_mps) {
-  const double per_turn = wheel_m_per_motor_turn();
+  const double per_turn = metres_per_motor_turn(config_, geometry_);
   const double v[2] = {left_mps, right_mps};
   Status result;
   for (int i = 0; i < 2; ++i) {

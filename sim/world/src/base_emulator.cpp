@@ -101,8 +101,7 @@ void BaseEmulator::receive_agilex(const hal::CanFrame& f) {
 }
 
 WheelPair BaseEmulator::odrive_targets(TimePoint now) {
-  const double m_per_turn =
-      2.0 * M_PI * geometry_.wheel_radius_m / config_.odrive.motor_turns_per_wheel_turn;
+  const double m_per_turn = hal::can::metres_per_motor_turn(config_.odrive, geometry_);
   double v[2] = {0.0, 0.0};
   for (int i = 0; i < 2; ++i) {
     OdriveAxis& a = axes_[i];
@@ -143,8 +142,7 @@ void BaseEmulator::report(TimePoint now, const WheelPair& step_m, const WheelPai
   switch (config_.protocol) {
     case BaseProtocol::kColag: {
       if (fault_) return;  // this controller has no fault report: it goes silent
-      const double m_per_tick =
-          2.0 * M_PI * geometry_.wheel_radius_m / geometry_.ticks_per_revolution;
+      const double m_per_tick = geometry_.metres_per_tick();
       ticks_left_ += step_m.left / m_per_tick;
       ticks_right_ += step_m.right / m_per_tick;
       const auto wrap = [](double t) {
@@ -164,8 +162,7 @@ void BaseEmulator::report(TimePoint now, const WheelPair& step_m, const WheelPai
       return;
     }
     case BaseProtocol::kOdrive: {
-      const double turns_per_m =
-          config_.odrive.motor_turns_per_wheel_turn / (2.0 * M_PI * geometry_.wheel_radius_m);
+      const double turns_per_m = 1.0 / hal::can::metres_per_motor_turn(config_.odrive, geometry_);
       const double step[2] = {step_m.left, step_m.right};
       const double speed[2] = {speeds.left, speeds.right};
       const bool beat = elapsed(now, last_heartbeat_, kOdriveHeartbeatPeriod);

@@ -160,8 +160,9 @@ class UgvNavTask {
 
   msg::UgvMode mode_ = msg::UgvMode::kWaitingForInit;
   msg::BlockedReason blocked_reason_ = msg::BlockedReason::kNone;  // set with mode_
-  bool fault_ = false;
-  hal::DriveHealth base_fault_;  // why fault_ (odometry silent, or the base's own fault)
+  // Why it is in kFault (odometry silent, or the base's own fault); kNone: no fault.
+  hal::DriveHealth base_fault_;
+  bool faulty() const { return base_fault_.fault != msg::BaseFault::kNone; }
   msg::BaseFault drive_fault_seen_ = msg::BaseFault::kNone;  // the base's, last period
   msg::UavFlight uav_flight_ = msg::UavFlight::kInControl;   // as the UAV's last sample said
   TimePoint last_uav_stamp_ = kNever;                        // its stamp (fleet time)

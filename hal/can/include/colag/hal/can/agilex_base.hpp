@@ -48,7 +48,6 @@ class AgilexBase final : public WheelOdometry, public Drive {
   DriveHealth health() const override { return health_; }
 
   const AgilexCounters& counters() const { return counters_; }
-  const agilex::SystemState& system_state() const { return state_; }
 
  private:
   void read_bus();

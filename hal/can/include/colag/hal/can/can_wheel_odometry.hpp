@@ -2,6 +2,7 @@
 // The UGV's wheel odometry and drive on any CanBus (SocketCAN on a board, the simulated
 // motor controller on the host): WheelOdometry from ENCODER_COUNTS frames, Drive as
 // SPEED_COMMAND frames. Every malformed or implausible frame is rejected and counted.
+#include <cmath>
 #include <cstdint>
 
 #include "colag/common/limits.hpp"
@@ -19,7 +20,12 @@ struct WheelGeometry {
   std::uint32_t ticks_per_revolution = 4096;
   double max_wheel_speed_mps = 0.7;
   std::int32_t max_ticks_per_frame = 20000;  // ~15 m/s for 20 ms frames: beyond is a fault
+  double metres_per_turn() const { return 2.0 * M_PI * wheel_radius_m; }
+  double metres_per_tick() const { return 2.0 * M_PI * wheel_radius_m / ticks_per_revolution; }
 };
+
+// How long every base driver lets the bus take to queue a command frame.
+inline constexpr Duration kCommandSendWindow = std::chrono::milliseconds(5);
 
 struct CanOdometryCounters {
   std::uint64_t frames = 0;

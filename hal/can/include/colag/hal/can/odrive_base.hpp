@@ -31,6 +31,11 @@ struct OdriveConfig {
   Duration request_period = std::chrono::milliseconds(500);  // re-request closed loop
 };
 
+// Wheel travel per motor turn (the gear ratio between them).
+inline double metres_per_motor_turn(const OdriveConfig& c, const WheelGeometry& g) {
+  return g.metres_per_turn() / c.motor_turns_per_wheel_turn;
+}
+
 struct OdriveCounters {
   std::uint64_t frames = 0;
   std::uint64_t heartbeats = 0;
@@ -77,7 +82,6 @@ class OdriveBase final : public WheelOdometry, public Drive {
   void update_health(TimePoint now);
   Status send_velocities(TimePoint now, double left_mps, double right_mps);
   Status send(const CanFrame& f, TimePoint now);
-  double wheel_m_per_motor_turn() const;
 
   CanBus& bus_;
   OdriveConfig config_;

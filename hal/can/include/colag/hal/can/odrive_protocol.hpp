@@ -22,7 +22,6 @@ enum class Command : std::uint8_t {
 };
 
 // Axis states (the ones the firmware uses).
-inline constexpr std::uint32_t kAxisStateUndefined = 0;
 inline constexpr std::uint32_t kAxisStateIdle = 1;
 inline constexpr std::uint32_t kAxisStateClosedLoop = 8;
 // Axis error bits (0.5.x) the emulator raises; the driver reports any bit.
