@@ -1,6 +1,6 @@
 // colag_sim: one simulated ColAG mission on the host (the real firmware tasks against the
 // simulated world, faster than real time), printing the paper's metrics, optionally writing
-// them as JSON and drawing the mission as a PNG.
+// them as JSON, drawing the mission as a PNG and recording it as MCAP (ROS 2 topics + truth).
 //
 // Exit codes: 0 every UGV reached its goal and nothing collided; 1 a collision, or a UGV short
 // of its goal (the table and the JSON say where and why); 2 a usage or input error (options, map
@@ -18,6 +18,7 @@
 #include "colag/sim/mission/mission.hpp"
 #include "colag/sim/mission/world_file.hpp"
 #include "colag/sim/mission_png.hpp"
+#include "colag/sim/recording/mcap_recorder.hpp"
 #include "colag/sim/world/pcd_writer.hpp"
 
 using namespace colag;
@@ -81,7 +82,7 @@ void print_table(const mission::MissionOutcome& o) {
 int run(int argc, char** argv) {
   CLI::App app{"colag_sim: one simulated ColAG mission (UAV + blind UGVs) on the host"};
   mission::MissionConfig cfg;
-  std::string map_file, ablation = "none", json_path, png_path;
+  std::string map_file, ablation = "none", json_path, png_path, mcap_path;
   bool quiet = false, verbose = false;
   auto* scenario = app.add_option("--scenario", cfg.scenario,
                                   "generated map: sparse (40 boxes), dense (80) or pillars (80, "
@@ -166,6 +167,9 @@ int run(int argc, char** argv) {
   sim::add_ugv_base_option(app, cfg.ugv_base);
   app.add_option("--json", json_path, "write the metrics as JSON to this file");
   app.add_option("--png", png_path, "draw the mission into this PNG file");
+  app.add_option("--mcap", mcap_path,
+                 "record the mission into this MCAP file (ROS 2 topics of every robot and the "
+                 "world's truth; open it in Foxglove or Lichtblick)");
   std::string save_map;
   app.add_option("--save-map", save_map,
                  "write the scenario's map as a PCD file (the paper's format) and exit");
@@ -248,6 +252,13 @@ int run(int argc, char** argv) {
     }
   }
 
+  std::string error;
+  mission::McapRecorder recorder;
+  if (!mcap_path.empty() && !recorder.open(mcap_path, error)) {
+    std::fprintf(stderr, "colag_sim: --mcap: %s\n", error.c_str());
+    return 2;
+  }
+
   const bool bar = !quiet && isatty(STDERR_FILENO);
   if (bar) {
     cfg.progress = [](double f) {
@@ -261,9 +272,8 @@ int run(int argc, char** argv) {
     std::fprintf(stderr, "colag_sim: warning: %s\n", w.c_str());
   };
   mission::MissionTrace trace;
-  std::string error;
-  const auto outcome =
-      mission::run_mission(cfg, png_path.empty() && !verbose ? nullptr : &trace, &error);
+  const auto outcome = mission::run_mission(cfg, png_path.empty() && !verbose ? nullptr : &trace,
+                                            &error, mcap_path.empty() ? nullptr : &recorder);
   if (bar) std::fprintf(stderr, "\r%*s\r", 60, "");
   if (!outcome) {
     std::fprintf(stderr, "colag_sim: %s\n", error.c_str());
@@ -304,6 +314,17 @@ int run(int argc, char** argv) {
       return 2;
     }
     if (!quiet) std::printf("  metrics: %s\n", json_path.c_str());
+  }
+  if (!mcap_path.empty()) {
+    if (!recorder.close(error)) {
+      std::fprintf(stderr, "colag_sim: --mcap: %s\n", error.c_str());
+      return 2;
+    }
+    if (!quiet) {
+      std::printf("  recording: %s (%llu messages, %.1f MB)\n", mcap_path.c_str(),
+                  static_cast<unsigned long long>(recorder.messages()),
+                  static_cast<double>(recorder.bytes()) / 1e6);
+    }
   }
   if (!png_path.empty()) {
     if (!programs::draw_mission(trace, o, png_path, error)) {

@@ -522,6 +522,7 @@ void UgvNavTask::publish_status(TimePoint now) {
   s.base_fault = base_fault_.fault;
   s.base_error = base_fault_.code;
   (void)transport_.publish(s);
+  last_status_ = s;
 }
 
 }  // namespace colag::ugv

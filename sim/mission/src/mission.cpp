@@ -314,6 +314,21 @@ Mission::~Mission() = default;
 const platform::LockstepExecutor& Mission::executor() const {
   return *parts_->ex;
 }
+const MissionConfig& Mission::config() const {
+  return parts_->cfg;
+}
+const sim::SimWorld& Mission::world() const {
+  return *parts_->world;
+}
+const uav::UavSupervisorTask* Mission::uav() const {
+  return parts_->uav.get();
+}
+std::size_t Mission::ugv_count() const {
+  return parts_->ugvs.size();
+}
+const ugv::UgvNavTask& Mission::ugv(std::size_t i) const {
+  return *parts_->ugvs.at(i).task;
+}
 
 std::unique_ptr<Mission> Mission::compose(const MissionConfig& cfg, std::string& error) {
   if (!check(cfg, error)) return nullptr;
@@ -437,7 +452,7 @@ std::unique_ptr<Mission> Mission::compose(const MissionConfig& cfg, std::string&
   return std::unique_ptr<Mission>(new Mission(std::move(p)));
 }
 
-void Mission::fly(MissionTrace* trace) {
+void Mission::fly(MissionTrace* trace, MissionWatcher* watcher) {
   Parts& p = *parts_;
   const MissionConfig& cfg = p.cfg;
   const std::vector<UgvStack>& ugvs = p.ugvs;
@@ -473,6 +488,7 @@ void Mission::fly(MissionTrace* trace) {
     apply_faults(cfg.faults, to_seconds(p.ex->now()), *p.bus);
     p.ex->run_until(p.ex->now() + 100ms);
     ++tick;
+    if (watcher != nullptr) watcher->watch(*this);
     const double t = to_seconds(p.ex->now());
     bool all_done = true;
     for (std::size_t i = 0; i < ugvs.size(); ++i) {
@@ -594,14 +610,14 @@ MissionOutcome Mission::collect(MissionTrace* trace) const {
 }
 
 Result<MissionOutcome> run_mission(const MissionConfig& cfg, MissionTrace* trace,
-                                   std::string* error_out) {
+                                   std::string* error_out, MissionWatcher* watcher) {
   std::string error;
   const std::unique_ptr<Mission> mission = Mission::compose(cfg, error);
   if (!mission) {
     if (error_out != nullptr) *error_out = error;
     return Status{Errc::kInvalidArgument, "mission configuration"};
   }
-  mission->fly(trace);
+  mission->fly(trace, watcher);
   return mission->collect(trace);
 }
 

@@ -20,6 +20,20 @@ struct EnumRange<UavFlight> {
   static constexpr UavFlight kLast = UavFlight::kLanding;
 };
 
+inline const char* to_string(UavFlight f) {
+  switch (f) {
+    case UavFlight::kInControl:
+      return "in_control";
+    case UavFlight::kStarting:
+      return "starting";
+    case UavFlight::kLost:
+      return "lost";
+    case UavFlight::kLanding:
+      return "landing";
+  }
+  return "unknown";
+}
+
 // Why the flight controller left the mission (with UavFlight::kLost), or why it has not
 // taken it up yet (kStarting).
 enum class FlightFault : std::uint8_t {

@@ -24,6 +24,31 @@ struct EnumRange<UgvMode> {
   static constexpr UgvMode kLast = UgvMode::kUavUnavailable;
 };
 
+// Its name in telemetry (ROS 2 status, logs).
+inline const char* to_string(UgvMode m) {
+  switch (m) {
+    case UgvMode::kWaitingForInit:
+      return "waiting_for_init";
+    case UgvMode::kDriving:
+      return "driving";
+    case UgvMode::kWaitingForSupport:
+      return "waiting_for_support";
+    case UgvMode::kArrived:
+      return "arrived";
+    case UgvMode::kNoPath:
+      return "no_path";
+    case UgvMode::kFault:
+      return "fault";
+    case UgvMode::kBlocked:
+      return "blocked";
+    case UgvMode::kWaitingForRobot:
+      return "waiting_for_robot";
+    case UgvMode::kUavUnavailable:
+      return "uav_unavailable";
+  }
+  return "unknown";
+}
+
 // Why a UGV stands still (what it reports with kBlocked).
 enum class BlockedReason : std::uint8_t {
   kNone = 0,

@@ -128,6 +128,7 @@ class UavSupervisorTask {
   const NoReturnBeams& no_return_beams() const { return no_returns_; }
   const ScheduleResult& schedule() const { return schedule_; }
   const msg::SupportPlan& plan() const { return plan_; }
+  const msg::UavOdometry& last_odometry() const { return last_odometry_; }  // as last sent
   UavMode mode() const { return mode_; }
   const FlightPlanner& flight() const { return flight_; }
   const UavHealth& health() const { return health_; }

@@ -86,6 +86,7 @@ class UgvNavTask {
   msg::BlockedReason blocked_reason() const { return blocked_reason_; }  // with kBlocked
   bool requesting_support() const { return support_.requesting(); }
   const UgvNavConfig& config() const { return config_; }
+  const msg::UgvStatus& last_status() const { return last_status_; }  // as last published
 
  private:
   using Loop = platform::MemberLoop<UgvNavTask>;
@@ -152,6 +153,7 @@ class UgvNavTask {
   Controller controller_;
   CollisionPredictor predictor_;
   Prediction prediction_;
+  msg::UgvStatus last_status_;
   SupportProtocol support_;
   BlockedWatch blocked_;
   std::array<OtherUgv, limits::kMaxUgvs> others_{};

@@ -10,8 +10,23 @@
 #include "colag/platform/lockstep_executor.hpp"
 #include "colag/sim/mission/mission_config.hpp"
 #include "colag/sim/mission/mission_outcome.hpp"
+#include "colag/sim/world/sim_world.hpp"
+#include "colag/uav/uav_supervisor_task.hpp"
+#include "colag/ugv/ugv_nav_task.hpp"
 
 namespace colag::mission {
+
+class Mission;
+
+// Sees the mission every 100 ms of simulated time, after the robots ran (e.g. the MCAP
+// recorder). Read-only: watching never changes the outcome.
+class MissionWatcher {
+ public:
+  virtual void watch(const Mission& mission) = 0;
+
+ protected:
+  ~MissionWatcher() = default;
+};
 
 class Mission {
  public:
@@ -24,11 +39,18 @@ class Mission {
 
   // Runs until every UGV has arrived or stopped for good, or the configured time is up,
   // watching the truth every 100 ms; fills `trace` (optional) for the mission figure.
-  void fly(MissionTrace* trace = nullptr);
+  void fly(MissionTrace* trace = nullptr, MissionWatcher* watcher = nullptr);
   // The metrics; completes `trace` (collisions, what the UAV never saw).
   MissionOutcome collect(MissionTrace* trace = nullptr) const;
 
   const platform::LockstepExecutor& executor() const;
+  // What a watcher sees.
+  TimePoint now() const { return executor().now(); }
+  const MissionConfig& config() const;
+  const sim::SimWorld& world() const;
+  const uav::UavSupervisorTask* uav() const;  // null in the self-perception baseline
+  std::size_t ugv_count() const;
+  const ugv::UgvNavTask& ugv(std::size_t i) const;
 
  private:
   struct Parts;
@@ -38,6 +60,7 @@ class Mission {
 
 // check, compose, fly, collect. Fails (with a message) only on a bad configuration or map file.
 Result<MissionOutcome> run_mission(const MissionConfig& cfg, MissionTrace* trace = nullptr,
-                                   std::string* error_out = nullptr);
+                                   std::string* error_out = nullptr,
+                                   MissionWatcher* watcher = nullptr);
 
 }  // namespace colag::mission

@@ -91,6 +91,7 @@ class SimWorld {
   hal::CanBus& ugv_can(int i);
   hal::Lidar& ugv_lidar(int i);
   UavBody& uav();
+  const UavBody* uav_body() const { return uav_.get(); }  // null without a UAV
   hal::Lidar& uav_lidar();
   hal::RelativePoseSensor& uav_camera();
 
