@@ -6,7 +6,7 @@
 #                   [--world ideal|field|FILE] [--json OUT] [--netns] [--loss PCT] [--domain D] [--build DIR]
 #                   [--time-scale X] [--kill-ugv I@T [--restart-after S]]
 #                   [--uav-stack sim|px4 [--px4-release R] [--px4-silent-at T | --px4-failsafe-at T |
-#                    --px4-pilot-at T]] [--ugv-base colag|odrive|agilex_v2]
+#                    --px4-pilot-at T]] [--ugv-base colag|odrive|agilex_v2] [--ros2] [--mcap FILE]
 # Waits for the mission to end, writes the metrics JSON (colag_sim's schema; default
 # build/sitl/run-<pid>/metrics.json), stops every process by PID, prints a summary, and exits 0 when
 # every UGV reached its goal with no collision (1 otherwise, 2 on a usage or set-up error, 77
@@ -36,6 +36,10 @@
 #               stop within a second and uav.log say why.
 #   --ugv-base B  the UGVs' bases speak B on their CAN buses (colag_world emulates two ODrive
 #               axes or an AgileX base; each ugv.yaml gets can.protocol B). Default colag.
+#   --ros2      every robot's ROS 2 telemetry on (`ros2: {enabled: true}`): ugv<i>/odom, status,
+#               plan, prediction, map; uav/odom, status, map, support_plan; /tf; on domain D.
+#               Goals on ugv<i>/goal_pose.
+#   --mcap FILE record the mission as MCAP (colag_record on domain D; implies --ros2).
 # Logs and configurations: build/sitl/run-<pid>/.
 set -euo pipefail
 caller=$PWD
@@ -43,8 +47,8 @@ cd "$(dirname "$0")/.."
 
 ugvs=3 scenario=dense seed=1 max_time=400 json="" netns=0 loss=0 scale=1
 build=build/host domain="" kill_ugv="" restart_after="" world_name=ideal
-uav_stack=sim px4_release=1.16 px4_fault=() ugv_base=colag
-usage() { sed -n '2,38p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
+uav_stack=sim px4_release=1.16 px4_fault=() ugv_base=colag ros2=0 mcap=""
+usage() { sed -n '2,42p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
 while (($#)); do
   case "$1" in
     --ugvs) ugvs=$2; shift 2 ;;
@@ -62,6 +66,8 @@ while (($#)); do
     --restart-after) restart_after=$2; shift 2 ;;
     --uav-stack) uav_stack=$2; shift 2 ;;
     --ugv-base) ugv_base=$2; shift 2 ;;
+    --ros2) ros2=1; shift ;;
+    --mcap) mcap=$2; [[ $2 == /* ]] || mcap=$caller/$2; ros2=1; shift 2 ;;
     --px4-release) px4_release=$2; shift 2 ;;
     --px4-silent-at|--px4-failsafe-at|--px4-pilot-at) px4_fault=("$1" "$2"); shift 2 ;;
     *) usage ;;
@@ -133,6 +139,7 @@ robot: {id: 0, hal: $uav_stack}
 dds: {domain: $domain}
 realtime: {fifo_priority: 0, lock_memory: false}
 YAML
+if ((ros2)); then echo "ros2: {enabled: true}" >>"$run/uav.yaml"; fi
 # The UAV's sensors (and, on PX4, its flight stack's topics) as the world simulates them,
 # described as on a board.
 stack_args=(--uav-stack "$uav_stack" --ugv-base "$ugv_base")
@@ -148,6 +155,7 @@ dds: {domain: $domain}
 realtime: {fifo_priority: 0, lock_memory: false}
 can: {interface: sim, protocol: $ugv_base}
 YAML
+  if ((ros2)); then echo "ros2: {enabled: true}" >>"$run/ugv$i.yaml"; fi
 done
 
 pids=() namespaces=()
@@ -230,6 +238,11 @@ in_ns "$hub" "$build/bin/colag_world" --scenario "$scenario" --ugvs "$ugvs" --se
   --max-silence "$silence" "${stack_args[@]}" >"$run/world.log" 2>&1 &
 world=$!
 pids+=("$world")
+if [ -n "$mcap" ]; then
+  in_ns "$hub" "$build/bin/colag_record" --domain "$domain" --out "$mcap" >"$run/record.log" 2>&1 &
+  recorder=$!
+  pids+=("$recorder")
+fi
 in_ns "${ns_of[0]}" "$build/bin/uav_fw" --config "$run/uav.yaml" --time-scale "$scale" >"$run/uav.log" 2>&1 &
 uav=$!
 pids+=("$uav")
@@ -272,6 +285,15 @@ world_rc=$?
 set -e
 wait "$tailer" 2>/dev/null || true  # tail --pid ends within a second of the world
 wall=$(($(date +%s) - start))
+if [ -n "$mcap" ]; then
+  kill -INT "$recorder" 2>/dev/null || true
+  if wait "$recorder"; then
+    echo "sitl: recording: $(tail -n 1 "$run/record.log" | sed 's/^colag_record: //')"
+  else
+    echo "sitl: colag_record failed; see $run/record.log" >&2
+    exit 1
+  fi
+fi
 
 if ((netns)); then
   echo "sitl: robot-to-robot DDS traffic per robot over $wall s (domain $domain only; the sim link excluded):"

@@ -1,5 +1,7 @@
 #include "colag/board/config.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <utility>
@@ -39,7 +41,7 @@ std::string relative_to(const std::string& config_file, const std::string& path)
 void read_common(Reader& r, const YAML::Node& doc, const std::vector<std::string>& robot_sections,
                  CommonBoardConfig& out) {
   std::set<std::string> sections(robot_sections.begin(), robot_sections.end());
-  sections.insert({"dds", "realtime"});
+  sections.insert({"dds", "realtime", "ros2"});
   r.only(doc, "", sections);
   const YAML::Node dds = child(doc, "dds");
   r.only(dds, "dds", {"domain", "partition", "security"});
@@ -73,6 +75,25 @@ void read_common(Reader& r, const YAML::Node& doc, const std::vector<std::string
   r.only(rt, "realtime", {"fifo_priority", "lock_memory"});
   r.get(rt, "realtime", "fifo_priority", out.realtime.fifo_priority, 0, 99);
   r.get(rt, "realtime", "lock_memory", out.realtime.lock_memory);
+
+  const YAML::Node ros2 = child(doc, "ros2");
+  r.only(ros2, "ros2", {"enabled", "namespace", "status_period_s", "map_period_s", "commands"});
+  Ros2Config& o = out.ros2;
+  r.get(ros2, "ros2", "enabled", o.enabled);
+  r.get(ros2, "ros2", "namespace", o.ns);
+  r.get(ros2, "ros2", "status_period_s", o.status_period_s, 0.05, 60.0);
+  r.get(ros2, "ros2", "map_period_s", o.map_period_s, 0.1, 600.0);
+  r.get(ros2, "ros2", "commands", o.commands);
+  // A ROS name: letters, digits, '_' and '/', not starting with a digit.
+  const bool name_ok =
+      std::all_of(o.ns.begin(), o.ns.end(),
+                  [](char c) {
+                    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '/';
+                  }) &&
+      (o.ns.empty() || !std::isdigit(static_cast<unsigned char>(o.ns[0])));
+  if (!name_ok) r.fail("ros2.namespace", "not a ROS name (letters, digits, _ and /)");
+  if (o.enabled && out.dds_security.enabled())
+    r.fail("ros2.enabled", "not with dds.security yet: the ROS 2 topics would bypass it");
 }
 
 }  // namespace colag::board

@@ -304,7 +304,11 @@ class Monitor final : public platform::Task {
         exec_.request_stop();
         return;
       }
-      const bool arrived = traffic_.status[k].mode == msg::UgvMode::kArrived;
+      // Arrived at its mission goal: a goal sent at run time (ROS 2 goal_pose) is a stop on
+      // the way, not the end of its mission.
+      const msg::UgvStatus& st = traffic_.status[k];
+      const bool arrived = st.mode == msg::UgvMode::kArrived &&
+                           (Vec2(st.goal_m[0], st.goal_m[1]) - mission::ugv_goal(i)).norm() < 0.01;
       still_[k].update(arrived, world_.ugv(i).speed_mps(), to_seconds(now - last_));
       if (arrived && reach_s_[k] < 0.0) {
         reach_s_[k] = t;

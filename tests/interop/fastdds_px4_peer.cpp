@@ -8,17 +8,6 @@
 //   colag_fastdds_px4_peer --domain D --duration S [--ignore-commands] [--silent-after S]
 // --ignore-commands: commands are neither acknowledged nor obeyed (a PX4 that does not hear
 // them: a QoS or version mismatch on vehicle_command alone).
-#include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
-#include <fastrtps/utils/IPLocator.h>
-#include <fastdds/dds/domain/DomainParticipant.hpp>
-#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
-#include <fastdds/dds/publisher/DataWriter.hpp>
-#include <fastdds/dds/publisher/Publisher.hpp>
-#include <fastdds/dds/subscriber/DataReader.hpp>
-#include <fastdds/dds/subscriber/SampleInfo.hpp>
-#include <fastdds/dds/subscriber/Subscriber.hpp>
-#include <fastdds/dds/topic/TypeSupport.hpp>
-
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -28,6 +17,7 @@
 #include <string>
 #include <thread>
 
+#include "fastdds_peer.hpp"
 #include "px4_msgsPubSubTypes.h"
 #include "ros2_msgsPubSubTypes.h"
 
@@ -41,59 +31,15 @@ double since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-struct Peer {
-  DomainParticipant* participant = nullptr;
-  Publisher* pub = nullptr;
-  Subscriber* sub = nullptr;
-
-  bool init(unsigned domain) {
-    DomainParticipantQos pq;
-    pq.name("colag_fastdds_px4_peer");
-    // Loopback only, no shared memory (it only works Fast <-> Fast), and Cyclone found by
-    // unicast: on lo Cyclone does not multicast.
-    pq.transport().use_builtin_transports = false;
-    auto udp = std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>();
-    udp->interfaceWhiteList.emplace_back("127.0.0.1");
-    pq.transport().user_transports.push_back(udp);
-    eprosima::fastrtps::rtps::Locator_t peer;
-    eprosima::fastrtps::rtps::IPLocator::setIPv4(peer, 127, 0, 0, 1);
-    pq.wire_protocol().builtin.initialPeersList.push_back(peer);
-    pq.wire_protocol().builtin.discovery_config.leaseDuration_announcementperiod = {0, 200000000};
-    participant = DomainParticipantFactory::get_instance()->create_participant(domain, pq);
-    if (participant == nullptr) return false;
-    pub = participant->create_publisher(PUBLISHER_QOS_DEFAULT);
-    sub = participant->create_subscriber(SUBSCRIBER_QOS_DEFAULT);
-    return pub != nullptr && sub != nullptr;
-  }
-  Topic* topic(const std::string& name, TopicDataType* type) {
-    TypeSupport ts(type);
-    ts.register_type(participant);
-    return participant->create_topic(name, ts.get_type_name(), TOPIC_QOS_DEFAULT);
-  }
-  // PX4's publishers: best effort, transient local, keep last.
+// PX4's publishers: best effort, transient local, keep last 1; its subscribers: best effort,
+// volatile.
+struct Peer : colag::interop::FastDdsPeer {
+  bool init(unsigned domain) { return FastDdsPeer::init(domain, "colag_fastdds_px4_peer"); }
   DataWriter* writer(const std::string& name, TopicDataType* type, bool transient_local) {
-    Topic* t = topic(name, type);
-    if (t == nullptr) return nullptr;
-    DataWriterQos q = DATAWRITER_QOS_DEFAULT;
-    q.reliability().kind = BEST_EFFORT_RELIABILITY_QOS;
-    q.durability().kind =
-        transient_local ? TRANSIENT_LOCAL_DURABILITY_QOS : VOLATILE_DURABILITY_QOS;
-    q.history().kind = KEEP_LAST_HISTORY_QOS;
-    q.history().depth = 1;
-    q.data_sharing().off();
-    return pub->create_datawriter(t, q);
+    return FastDdsPeer::writer(name, type, false, transient_local, 1);
   }
-  // PX4's subscribers: best effort, volatile.
   DataReader* reader(const std::string& name, TopicDataType* type) {
-    Topic* t = topic(name, type);
-    if (t == nullptr) return nullptr;
-    DataReaderQos q = DATAREADER_QOS_DEFAULT;
-    q.reliability().kind = BEST_EFFORT_RELIABILITY_QOS;
-    q.durability().kind = VOLATILE_DURABILITY_QOS;
-    q.history().kind = KEEP_LAST_HISTORY_QOS;
-    q.history().depth = 16;
-    q.data_sharing().off();
-    return sub->create_datareader(t, q);
+    return FastDdsPeer::reader(name, type, false, 16);
   }
 };
 

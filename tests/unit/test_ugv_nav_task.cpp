@@ -191,6 +191,25 @@ TEST(UgvNavTask, DrivesToTheGoalThroughAKnownFreeMap) {
   EXPECT_GT(rig.ugv->estimator().counters().updates, 150u);
 }
 
+// A goal sent at run time (the ROS 2 goal_pose): refused with a reason when it cannot be
+// driven to, otherwise driven to, even after the UGV had arrived at its first goal.
+TEST(UgvNavTask, ANewGoalAtRunTimeIsValidatedThenDrivenTo) {
+  Rig rig(Vec2(2.0, 0.0));
+  rig.publish_map(-3.2, -3.2, 9.6, 6.4);
+  ASSERT_TRUE(rig.run_until([&] { return rig.ugv->mode() == msg::UgvMode::kArrived; }, 30s));
+  EXPECT_EQ(rig.ugv->request_goal(Vec2(std::nan(""), 0.0)), GoalResult::kNotFinite);
+  EXPECT_EQ(rig.ugv->request_goal(Vec2(500.0, 0.0)), GoalResult::kOutsideMap);
+  EXPECT_EQ(rig.ugv->mode(), msg::UgvMode::kArrived);  // refusals change nothing
+  EXPECT_EQ(rig.ugv->goal(), Vec2(2.0, 0.0));
+  ASSERT_EQ(rig.ugv->request_goal(Vec2(4.0, 3.0)), GoalResult::kAccepted);
+  rig.ex.run_until(rig.ex.now() + 300ms);
+  EXPECT_EQ(rig.ugv->mode(), msg::UgvMode::kDriving);
+  ASSERT_TRUE(rig.run_until([&] { return rig.ugv->mode() == msg::UgvMode::kArrived; }, 30s))
+      << "mode " << static_cast<int>(rig.ugv->mode());
+  EXPECT_LT((rig.world->truth.p - Vec2(4.0, 3.0)).norm(), 0.35);
+  EXPECT_EQ(rig.ugv->last_status().goal_m[0], 4.0);
+}
+
 TEST(UgvNavTask, StopsBeforeTheUnknownAsksForSupportAndGoesOnOnceItIsMapped) {
   Rig rig(Vec2(6.0, 0.0));
   rig.publish_map(-3.2, -3.2, 2.5, 3.2);  // known free up to x = 2.5, unknown beyond

@@ -257,7 +257,7 @@ void UgvNavTask::drive(TimePoint now, double dt) {
   }
   const ControlOutput out = controller_.step(ekf_.pose(), trajectory_, dt);
   cross_track_m_ = out.cross_track_m;
-  if (out.at_goal && (ekf_.pose().p - config_.goal).norm() <= config_.controller.goal_tolerance_m) {
+  if (out.at_goal && (ekf_.pose().p - goal_).norm() <= config_.controller.goal_tolerance_m) {
     if (sure_of_position()) {
       arrived_ = true;
       mode_ = msg::UgvMode::kArrived;
@@ -411,7 +411,7 @@ void UgvNavTask::replan(TimePoint now) {
   last_plan_ = now;
   replan_requested_ = false;
   ++health_.plans;
-  const PlanResult r = planner_.plan(map_, ekf_.pose().p, config_.goal, others_plan_, path_);
+  const PlanResult r = planner_.plan(map_, ekf_.pose().p, goal_, others_plan_, path_);
   if (r != PlanResult::kOk || !trajectory_.build(path_, controller_.last_v(), config_.limits)) {
     ++health_.plan_failures;
     no_path_ = true;
@@ -457,7 +457,7 @@ void UgvNavTask::predict_and_request(TimePoint now) {
   if (was_stopped && !stopped_for_support_ && !stopped_for_robot_) replan_requested_ = true;
   if (awaiting_fix_) {  // the UAV to come to the goal and see it there
     need.needed = true;
-    need.collision_point = config_.goal;
+    need.collision_point = goal_;
     need.support_point = ekf_.pose().p;
     need.time_to_collision_s = 0.0;
   }
@@ -486,6 +486,18 @@ void UgvNavTask::publish_request(msg::CollisionInfo& ci) {
   if (transport_.publish(ci)) ++health_.support_messages;
 }
 
+GoalResult UgvNavTask::request_goal(const Vec2& goal) {
+  if (!all_finite(goal)) return GoalResult::kNotFinite;
+  const CellIndex c = map_.geometry().cell_of(goal);
+  if (!map_.geometry().contains(c)) return GoalResult::kOutsideMap;
+  if (map_.state(c) == CellState::kOccupied) return GoalResult::kInObstacle;
+  goal_ = goal;
+  arrived_ = false;
+  awaiting_fix_ = false;
+  replan_requested_ = true;
+  return GoalResult::kAccepted;
+}
+
 void UgvNavTask::publish_status(TimePoint now) {
   msg::UgvStatus s;
   s.stamp = fleet_.to_fleet(now);
@@ -511,8 +523,8 @@ void UgvNavTask::publish_status(TimePoint now) {
   }
   s.velocity_mps = v_cmd_;
   s.yaw_rate_radps = omega_cmd_;
-  s.goal_m[0] = config_.goal.x();
-  s.goal_m[1] = config_.goal.y();
+  s.goal_m[0] = goal_.x();
+  s.goal_m[1] = goal_.y();
   s.waiting_time_s = waiting_time_s();
   s.blocked_reason = blocked_reason_;
   s.clock_error_s = fleet_.error_s(now);

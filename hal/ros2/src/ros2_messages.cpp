@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 
 namespace colag::hal::ros2 {
@@ -112,7 +113,14 @@ void OdometryMessage::set(const msg::UavOdometry& o) {
 UgvStatusMessage::UgvStatusMessage() {
   set_name(frame_, kMapFrame);
   msg_.header.frame_id = c_str(frame_);
-  msg_.mode_name = msg_.blocked_reason_text = msg_.base_fault_text = kEmpty;
+  msg_.mode_name = msg_.blocked_reason_text = msg_.base_fault_text = msg_.last_goal_text = kEmpty;
+}
+
+void UgvStatusMessage::set_goals(std::uint32_t received, std::uint8_t last_result,
+                                 const char* text) {
+  msg_.goals_received = received;
+  msg_.last_goal_result = last_result;
+  msg_.last_goal_text = c_str(received == 0 ? "" : text);
 }
 
 void UgvStatusMessage::set(const msg::UgvStatus& s) {
@@ -282,6 +290,51 @@ bool TfMessage::add(TimePoint stamp, std::string_view child_frame, double x, dou
   t.transform.rotation = {q_wxyz[1], q_wxyz[2], q_wxyz[3], q_wxyz[0]};
   ++msg_.transforms._length;
   return true;
+}
+
+std::int8_t occupancy_value(CellState s) {
+  switch (s) {
+    case CellState::kFree:
+      return GridMessage::kFree;
+    case CellState::kOccupied:
+      return GridMessage::kOccupied;
+    case CellState::kUnknown:
+      break;
+  }
+  return GridMessage::kUnknown;
+}
+
+void set_prediction(MarkerArrayMessage& out, TimePoint stamp, std::span<const Ellipse> ellipses,
+                    const Vec2* collision_point) {
+  out.clear(stamp);
+  (void)out.delete_all();
+  out.add_ellipses("ellipses", ellipses, 0.01, {0.2F, 0.5F, 1.0F, 0.3F});
+  if (collision_point != nullptr) {
+    const double at[4] = {collision_point->x(), collision_point->y(), 0.2, 0.0};
+    const double scale[3] = {0.3, 0.3, 0.3};
+    (void)out.add("collision_point", 0, MarkerArrayMessage::kSphere, {1.0F, 0.1F, 0.1F, 0.9F}, at,
+                  scale);
+  }
+}
+
+void set_support_plan(const msg::SupportPlan& plan, PathMessage& path,
+                      MarkerArrayMessage& markers) {
+  path.clear(plan.stamp);
+  markers.clear(plan.stamp);
+  (void)markers.delete_all();
+  std::int32_t id = 0;
+  for (std::size_t k = 0; k < plan.stops.count; ++k) {
+    const msg::SupportStop& st = plan.stops.items[k];
+    (void)path.push(st.point_m[0], st.point_m[1], st.point_m[2], 0.0);
+    const double at[4] = {st.point_m[0], st.point_m[1], st.point_m[2], 0.0};
+    const double ball[3] = {0.4, 0.4, 0.4}, text[3] = {0.0, 0.0, 0.4};
+    (void)markers.add("stops", id, MarkerArrayMessage::kSphere, {1.0F, 0.6F, 0.0F, 0.8F}, at, ball);
+    (void)markers.add("labels", id++, MarkerArrayMessage::kText, {1, 1, 1, 1}, at, text);
+    char label[48];
+    std::snprintf(label, sizeof label, "%zu: ugv%u eta %.1f s by %.1f s", k + 1,
+                  static_cast<unsigned>(st.ugv_id), st.eta_s, st.deadline_s);
+    markers.set_text(label);
+  }
 }
 
 }  // namespace colag::hal::ros2

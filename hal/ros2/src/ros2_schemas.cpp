@@ -96,7 +96,8 @@ constexpr std::array kDefinitions = {
                "uint8 blocked_reason\nstring blocked_reason_text\nuint8 base_fault\n"
                "string base_fault_text\nuint32 base_error\ngeometry_msgs/Point goal\n"
                "float64 waiting_time_s\nfloat64 clock_error_s\nuint32 rejected_inputs\n"
-               "uint32 overruns\nuint8 degradation\n",
+               "uint32 overruns\nuint8 degradation\nuint32 goals_received\n"
+               "uint8 last_goal_result\nstring last_goal_text\n",
                {"std_msgs/Header", "geometry_msgs/Point"}},
     Definition{"colag_msgs/UavStatus",
                "uint8 IN_CONTROL=0\nuint8 STARTING=1\nuint8 LOST=2\nuint8 LANDING=3\n"

@@ -22,18 +22,6 @@ struct Channel {
   const dds_topic_descriptor_t* type = nullptr;
 };
 
-std::int8_t grid_value(CellState s) {
-  switch (s) {
-    case CellState::kFree:
-      return GridMessage::kFree;
-    case CellState::kOccupied:
-      return GridMessage::kOccupied;
-    case CellState::kUnknown:
-      break;
-  }
-  return GridMessage::kUnknown;
-}
-
 void yaw_quaternion(double yaw, double (&q)[4]) {
   q[0] = std::cos(yaw / 2.0);
   q[1] = q[2] = 0.0;
@@ -202,20 +190,13 @@ void McapRecorder::record_ugv(const Mission& m, std::size_t i, int tick) {
       if (!u.plan_msg.push(p.p.x(), p.p.y(), 0.0, p.yaw_rad)) break;
     r.put(u.plan, &u.plan_msg.sample(), s.stamp);
     const ugv::Prediction& pr = task.prediction();
-    u.prediction_msg.clear(s.stamp);
-    (void)u.prediction_msg.delete_all();
-    u.prediction_msg.add_ellipses("ellipses", {pr.ellipses.data(), pr.ellipses.size()}, 0.01,
-                                  {0.2F, 0.5F, 1.0F, 0.3F});
-    if (pr.kind != ugv::CollisionKind::kNone) {
-      const double at[4] = {pr.point.x(), pr.point.y(), 0.2, 0.0}, scale[3] = {0.3, 0.3, 0.3};
-      (void)u.prediction_msg.add("collision_point", 0, MarkerArrayMessage::kSphere,
-                                 {1.0F, 0.1F, 0.1F, 0.9F}, at, scale);
-    }
+    set_prediction(u.prediction_msg, s.stamp, {pr.ellipses.data(), pr.ellipses.size()},
+                   pr.kind != ugv::CollisionKind::kNone ? &pr.point : nullptr);
     r.put(u.prediction, &u.prediction_msg.sample(), s.stamp);
   }
   if (tick % kTicksPerMap == 0) {
     const MapStore& map = task.map();
-    u.map_msg.fill(m.now(), [&](CellIndex c) { return grid_value(map.state(c)); });
+    u.map_msg.fill(m.now(), [&](CellIndex c) { return occupancy_value(map.state(c)); });
     r.put(u.map, &u.map_msg.sample(), m.now());
   }
 }
@@ -239,30 +220,14 @@ void McapRecorder::record_uav(const Mission& m, int tick) {
   }
   if (tick % kTicksPerMap == 0) {
     a.map_msg.fill(m.now(), [&](CellIndex c) {
-      return grid_value(task.sharer().classify(task.mapper(), c.x, c.y));
+      return occupancy_value(task.sharer().classify(task.mapper(), c.x, c.y));
     });
     r.put(a.map, &a.map_msg.sample(), m.now());
   }
   if (!a.plan_seen || plan.seq != a.plan_seq) {
     a.plan_seen = true;
     a.plan_seq = plan.seq;
-    a.plan_msg.clear(plan.stamp);
-    a.plan_markers.clear(plan.stamp);
-    (void)a.plan_markers.delete_all();
-    std::int32_t id = 0;
-    for (std::size_t k = 0; k < plan.stops.count; ++k) {
-      const msg::SupportStop& st = plan.stops.items[k];
-      (void)a.plan_msg.push(st.point_m[0], st.point_m[1], st.point_m[2], 0.0);
-      const double at[4] = {st.point_m[0], st.point_m[1], st.point_m[2], 0.0};
-      const double ball[3] = {0.4, 0.4, 0.4}, text[3] = {0.0, 0.0, 0.4};
-      (void)a.plan_markers.add("stops", id, MarkerArrayMessage::kSphere, {1.0F, 0.6F, 0.0F, 0.8F},
-                               at, ball);
-      (void)a.plan_markers.add("labels", id++, MarkerArrayMessage::kText, {1, 1, 1, 1}, at, text);
-      char label[48];
-      std::snprintf(label, sizeof label, "%zu: ugv%u eta %.1f s by %.1f s", k + 1,
-                    static_cast<unsigned>(st.ugv_id), st.eta_s, st.deadline_s);
-      a.plan_markers.set_text(label);
-    }
+    set_support_plan(plan, a.plan_msg, a.plan_markers);
     r.put(a.plan, &a.plan_msg.sample(), plan.stamp);
     r.put(a.markers, &a.plan_markers.sample(), plan.stamp);
   }

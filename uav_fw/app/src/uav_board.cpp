@@ -87,6 +87,12 @@ bool UavBoard::start(std::string& error) {
   pump_.emplace(dds_);
   Status st = executor_.add(platform::row(*pump_, uc.schedule.transport));
   if (st) st = executor_.add(task.rows());
+  if (st && cfg.common.ros2.enabled) {
+    if (!ros2_.emplace(task).start(cfg.common.dds_domain, cfg.common.ros2,
+                                   uc.schedule.telemetry.period, error))
+      return false;
+    st = executor_.add(platform::row(*ros2_, uc.schedule.telemetry));
+  }
   if (st) st = executor_.init();
   if (!st) {
     error = std::string("start-up: ") + st.message();
@@ -139,6 +145,13 @@ void UavBoard::print_counters(const char* program) const {
                 static_cast<unsigned long long>(c.clouds),
                 static_cast<unsigned long long>(c.malformed),
                 static_cast<unsigned long long>(c.points), static_cast<unsigned long long>(c.kept));
+  }
+  if (ros2_) {
+    const UavRos2Counters r = ros2_->counters();
+    std::printf("%s: ROS 2 telemetry: %llu messages, %llu write errors, %llu periods skipped\n",
+                program, static_cast<unsigned long long>(r.published),
+                static_cast<unsigned long long>(r.write_errors),
+                static_cast<unsigned long long>(r.skipped));
   }
 }
 

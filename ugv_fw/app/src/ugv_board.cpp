@@ -64,6 +64,13 @@ bool UgvBoard::start(std::string& error) {
   pump_.emplace(dds_);
   Status st = executor_.add(platform::row(*pump_, cfg.nav.schedule.transport));
   if (st) st = executor_.add(task.rows());
+  if (st && cfg.common.ros2.enabled) {
+    if (!ros2_.emplace(task).start(cfg.common.dds_domain, cfg.common.ros2, error)) {
+      (void)stop_motors();
+      return false;
+    }
+    st = executor_.add(platform::row(*ros2_, cfg.nav.schedule.telemetry));
+  }
   if (st) st = executor_.init();
   if (!st) {
     error = std::string("start-up: ") + st.message();
@@ -115,6 +122,15 @@ void UgvBoard::print_counters(const char* program) const {
       static_cast<unsigned long long>(c.lost), static_cast<unsigned long long>(c.implausible),
       static_cast<unsigned long long>(task_ ? task_->health().watchdog_trips : 0),
       static_cast<unsigned long long>(task_ ? task_->health().base_faults : 0));
+  if (ros2_) {
+    const UgvRos2Counters r = ros2_->counters();
+    std::printf(
+        "%s: ROS 2 telemetry: %llu messages, %llu write errors, %llu periods skipped, "
+        "%llu goals (%llu refused)\n",
+        program, static_cast<unsigned long long>(r.published),
+        static_cast<unsigned long long>(r.write_errors), static_cast<unsigned long long>(r.skipped),
+        static_cast<unsigned long long>(r.goals), static_cast<unsigned long long>(r.goals_refused));
+  }
 }
 
 }  // namespace colag::ugv

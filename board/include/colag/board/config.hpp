@@ -15,12 +15,24 @@
 
 namespace colag::board {
 
+// `ros2`: the robot's telemetry under ROS 2 names and types on the fleet's DDS domain, for
+// RViz2, Foxglove and `ros2 bag` (README "Watching a mission"). Off by default: off, nothing of
+// it is built.
+struct Ros2Config {
+  bool enabled = false;
+  std::string ns;                // `namespace`: "" = the robot's default (ugv<id>, uav)
+  double status_period_s = 0.5;  // status, plan, prediction; odometry and /tf at the loop's rate
+  double map_period_s = 1.0;     // the occupancy grid
+  bool commands = true;          // a UGV takes goals on <ns>/goal_pose
+};
+
 // The sections every robot's file has.
 struct CommonBoardConfig {
   std::uint32_t dds_domain = 0;
   std::string dds_partition;
   platform::DdsSecurityConfig dds_security;  // dds.security: all six files, or none (off)
   platform::RealtimeOptions realtime{.fifo_priority = 50, .lock_memory = true};
+  Ros2Config ros2;
 };
 
 // A robot's own part of the file. Config must have a `CommonBoardConfig common` member.

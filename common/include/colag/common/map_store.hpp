@@ -9,6 +9,7 @@
 // "more than the radius from every obstacle cell".
 #include <array>
 #include <cstdint>
+#include <span>
 
 #include "colag/common/grid2d.hpp"
 #include "colag/common/map_patch_codec.hpp"
@@ -44,6 +45,8 @@ class MapStore {
   Status apply(const msg::MapPatch& patch);
 
   const GridGeometry2d& geometry() const { return kWorldGrid2d; }
+  // Every cell's state, row-major over geometry() (a copy for telemetry is one memcpy).
+  std::span<const CellState> cells() const { return state_; }
   // Outside the grid: unknown, and blocked in both views.
   CellState state(CellIndex c) const;
   bool plan_blocked(CellIndex c) const;

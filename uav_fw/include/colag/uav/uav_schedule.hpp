@@ -18,6 +18,9 @@ struct UavSchedule {
   platform::LoopTiming sharing{std::chrono::milliseconds(50), std::chrono::milliseconds(10)};
   // 10 Hz: requests and statuses -> schedule -> flight target, SupportPlan.
   platform::LoopTiming scheduling{std::chrono::milliseconds(100), std::chrono::milliseconds(20)};
+  // 10 Hz, on a board with ROS 2 telemetry on (`ros2.enabled`): the task's state copied for the
+  // telemetry's own thread, its 2-D map view a slice of rows per step.
+  platform::LoopTiming telemetry{std::chrono::milliseconds(100), std::chrono::milliseconds(3)};
 };
 
 }  // namespace colag::uav

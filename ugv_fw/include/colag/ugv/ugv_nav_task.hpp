@@ -51,6 +51,30 @@ struct UgvHealth {
   }
 };
 
+// The answer to a new goal sent at run time (request_goal).
+enum class GoalResult : std::uint8_t {
+  kAccepted = 0,
+  kNotFinite = 1,
+  kOutsideMap = 2,  // outside the map's grid: it could never plan there
+  kInObstacle = 3,  // on a cell its map knows occupied
+  kWrongFrame = 4,  // (from the ROS 2 bridge) not in the fleet's world frame
+};
+inline const char* to_string(GoalResult r) {
+  switch (r) {
+    case GoalResult::kAccepted:
+      return "accepted";
+    case GoalResult::kNotFinite:
+      return "refused: not a finite position";
+    case GoalResult::kOutsideMap:
+      return "refused: outside the map";
+    case GoalResult::kInObstacle:
+      return "refused: inside an obstacle";
+    case GoalResult::kWrongFrame:
+      return "refused: not in frame map";
+  }
+  return "refused";
+}
+
 class UgvNavTask {
  public:
   UgvNavTask(const UgvNavConfig& config, platform::Transport& transport,
@@ -86,6 +110,11 @@ class UgvNavTask {
   msg::BlockedReason blocked_reason() const { return blocked_reason_; }  // with kBlocked
   bool requesting_support() const { return support_.requesting(); }
   const UgvNavConfig& config() const { return config_; }
+  // Drives to `goal` (world frame) from now on, unless it is refused: not finite, outside the
+  // map, or on a cell the map knows occupied (an unknown cell is accepted: the UAV will map it).
+  // An arrived UGV drives again. Call between steps, on the task's thread.
+  GoalResult request_goal(const Vec2& goal);
+  const Vec2& goal() const { return goal_; }
   const msg::UgvStatus& last_status() const { return last_status_; }  // as last published
 
  private:
@@ -154,6 +183,7 @@ class UgvNavTask {
   CollisionPredictor predictor_;
   Prediction prediction_;
   msg::UgvStatus last_status_;
+  Vec2 goal_ = config_.goal;  // where it drives (request_goal changes it)
   SupportProtocol support_;
   BlockedWatch blocked_;
   std::array<OtherUgv, limits::kMaxUgvs> others_{};

@@ -19,6 +19,9 @@ struct UgvSchedule {
   // with the control loop and run after it: a long plan delays no control step unless it takes
   // a whole control period.
   platform::LoopTiming planning{std::chrono::milliseconds(100), std::chrono::milliseconds(50)};
+  // 10 Hz, on a board with ROS 2 telemetry on (`ros2.enabled`): the task's state handed to the
+  // telemetry's own thread (a copy; DDS runs there), and goals from ROS 2 handed to the task.
+  platform::LoopTiming telemetry{std::chrono::milliseconds(100), std::chrono::milliseconds(2)};
 };
 
 }  // namespace colag::ugv

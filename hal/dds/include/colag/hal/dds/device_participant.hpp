@@ -1,7 +1,7 @@
 #pragma once
 // The DDS participant of a device driver that talks to software we did not write (PX4's agent,
-// FAST-LIO, the Livox driver): its topics carry their ROS 2 names and types, best effort as
-// those publishers send (a reliable reader would not match them), and no XTypes type
+// FAST-LIO, the Livox driver, ROS 2 tools): its topics carry their ROS 2 names and types, best
+// effort as those publishers send (a reliable reader would not match them), and no XTypes type
 // information: peers match them by type name alone, as ROS 2's own middlewares do (a type
 // object that differs in some detail would otherwise keep a matching peer apart). One per
 // driver; deleting it deletes everything under it.
@@ -32,11 +32,24 @@ class DeviceParticipant {
   // `wire_type`: the type name on the wire, when it is not the one `type` was declared with.
   dds_entity_t writer(const std::string& topic, const dds_topic_descriptor_t& type,
                       const char* wire_type = nullptr) {
-    return endpoint(topic, type, wire_type, true, 1);
+    return endpoint(topic, type, wire_type, true, {.depth = 1});
   }
   dds_entity_t reader(const std::string& topic, const dds_topic_descriptor_t& type, int depth,
                       const char* wire_type = nullptr) {
-    return endpoint(topic, type, wire_type, false, depth);
+    return endpoint(topic, type, wire_type, false, {.depth = depth});
+  }
+  // An endpoint with ROS 2's QoS for its kind: sensor data best effort; the default (status,
+  // paths, /tf) reliable; maps reliable and transient-local (a late joiner gets the last one).
+  struct Qos {
+    bool reliable = false;
+    bool transient_local = false;
+    int depth = 1;
+  };
+  dds_entity_t writer(const std::string& topic, const dds_topic_descriptor_t& type, Qos qos) {
+    return endpoint(topic, type, nullptr, true, qos);
+  }
+  dds_entity_t reader(const std::string& topic, const dds_topic_descriptor_t& type, Qos qos) {
+    return endpoint(topic, type, nullptr, false, qos);
   }
   dds_entity_t participant() const { return participant_; }
   // What failed last: "topic NAME: reason".
@@ -48,7 +61,7 @@ class DeviceParticipant {
     return {Errc::kUnavailable, "DDS entity not created"};
   }
   dds_entity_t endpoint(const std::string& name, const dds_topic_descriptor_t& type,
-                        const char* wire_type, bool write, int depth) {
+                        const char* wire_type, bool write, Qos q) {
     const dds_topic_descriptor_t& d = *types_.emplace_back(std::make_unique<dds_topic_descriptor_t>(
         by_name(type, wire_type ? wire_type : type.m_typename)));
     const dds_entity_t topic = dds_create_topic(participant_, &d, name.c_str(), nullptr, nullptr);
@@ -57,9 +70,11 @@ class DeviceParticipant {
       return 0;
     }
     dds_qos_t* qos = dds_create_qos();
-    dds_qset_reliability(qos, DDS_RELIABILITY_BEST_EFFORT, 0);
-    dds_qset_durability(qos, DDS_DURABILITY_VOLATILE);
-    dds_qset_history(qos, DDS_HISTORY_KEEP_LAST, depth);
+    dds_qset_reliability(qos, q.reliable ? DDS_RELIABILITY_RELIABLE : DDS_RELIABILITY_BEST_EFFORT,
+                         DDS_MSECS(100));
+    dds_qset_durability(
+        qos, q.transient_local ? DDS_DURABILITY_TRANSIENT_LOCAL : DDS_DURABILITY_VOLATILE);
+    dds_qset_history(qos, DDS_HISTORY_KEEP_LAST, q.depth);
     const dds_entity_t e = write ? dds_create_writer(participant_, topic, qos, nullptr)
                                  : dds_create_reader(participant_, topic, qos, nullptr);
     dds_delete_qos(qos);
@@ -82,5 +97,12 @@ class DeviceParticipant {
   std::vector<std::unique_ptr<dds_topic_descriptor_t>> types_;  // outlive their topics
   std::string error_;
 };
+
+// ROS 2's QoS presets, as its tools expect them.
+inline constexpr DeviceParticipant::Qos kSensorDataQos{};  // best effort, keep last 1
+inline constexpr DeviceParticipant::Qos kDefaultQos{.reliable = true, .depth = 10};
+inline constexpr DeviceParticipant::Qos kLatchedQos{
+    .reliable = true, .transient_local = true, .depth = 1};  // maps: a late joiner's too
+inline constexpr DeviceParticipant::Qos kTfQos{.reliable = true, .depth = 100};  // tf2's
 
 }  // namespace colag::hal::dds

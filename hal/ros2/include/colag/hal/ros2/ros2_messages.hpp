@@ -12,6 +12,7 @@
 
 #include "colag/common/ellipse.hpp"
 #include "colag/common/grid2d.hpp"
+#include "colag/common/map_patch_codec.hpp"
 #include "colag/common/time.hpp"
 #include "colag/msg/support_plan.hpp"
 #include "colag/msg/uav_odometry.hpp"
@@ -57,6 +58,8 @@ class UgvStatusMessage : NoCopy {
  public:
   UgvStatusMessage();
   void set(const msg::UgvStatus& s);
+  // The goals received on <ns>/goal_pose and the answer to the last (`text`: a literal).
+  void set_goals(std::uint32_t received, std::uint8_t last_result, const char* text);
   const colag_msgs_msg_dds__UgvStatus_& sample() const { return msg_; }
 
  private:
@@ -166,5 +169,16 @@ class TfMessage : NoCopy {
 
 // The namespaced frame of a robot's body: "ugv3/base_link".
 std::string base_link(std::string_view ns);
+
+// A map cell as an OccupancyGrid value: -1 unknown, 0 free, 100 occupied.
+std::int8_t occupancy_value(CellState s);
+
+// A UGV's collision prediction: its 3-sigma ellipses and, when a collision is predicted, the
+// point (replacing the array's earlier markers).
+void set_prediction(MarkerArrayMessage& out, TimePoint stamp, std::span<const Ellipse> ellipses,
+                    const Vec2* collision_point);
+// The UAV's support plan: the stops in visit order, and a marker per stop with its UGV, ETA
+// and deadline (replacing the earlier ones).
+void set_support_plan(const msg::SupportPlan& plan, PathMessage& path, MarkerArrayMessage& markers);
 
 }  // namespace colag::hal::ros2

@@ -13,6 +13,7 @@
 #include "colag/platform/realtime_executor.hpp"
 #include "colag/platform/worker_pool.hpp"
 #include "colag/uav/app/uav_config.hpp"
+#include "colag/uav/app/uav_ros2_bridge.hpp"
 #include "colag/uav/uav_supervisor_task.hpp"
 
 namespace colag::uav {
@@ -58,6 +59,7 @@ class UavBoard {
   platform::WorkerPool pool_{1};  // mapping may use a second core
   std::optional<platform::TransportPump> pump_;
   std::optional<UavSupervisorTask> task_;
+  std::optional<UavRos2Bridge> ros2_;  // with `ros2.enabled`
 };
 
 }  // namespace colag::uav

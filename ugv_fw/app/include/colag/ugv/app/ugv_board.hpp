@@ -15,6 +15,7 @@
 #include "colag/platform/dds/dds_transport.hpp"
 #include "colag/platform/realtime_executor.hpp"
 #include "colag/ugv/app/ugv_config.hpp"
+#include "colag/ugv/app/ugv_ros2_bridge.hpp"
 #include "colag/ugv/ugv_nav_task.hpp"
 
 namespace colag::ugv {
@@ -56,6 +57,7 @@ class UgvBoard {
   platform::dds::DdsTransport dds_;
   std::optional<platform::TransportPump> pump_;
   std::optional<UgvNavTask> task_;
+  std::optional<UgvRos2Bridge> ros2_;  // with `ros2.enabled`
   std::uint64_t state_errors_ = 0;
 };
 

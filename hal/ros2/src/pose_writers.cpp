@@ -1,0 +1,20 @@
+#include "colag/hal/ros2/pose_writers.hpp"
+
+#include "colag/hal/ros2/ros2_names.hpp"
+#include "ros2_msgs.h"
+
+namespace colag::hal::ros2 {
+
+bool PoseWriters::open(dds::DeviceParticipant& dds, std::uint32_t domain, std::string_view ns,
+                       std::string& error) {
+  if (dds.init(domain)) {
+    odom = dds.writer(ros2_dds_topic(ns, "odom"), nav_msgs_msg_dds__Odometry__desc,
+                      dds::kSensorDataQos);
+    tf = dds.writer(ros2_dds_topic("/tf"), tf2_msgs_msg_dds__TFMessage__desc, dds::kTfQos);
+  }
+  if (odom > 0 && tf > 0) return true;
+  error = "ROS 2 telemetry: " + dds.last_error();
+  return false;
+}
+
+}  // namespace colag::hal::ros2
