@@ -1,7 +1,8 @@
 #!/bin/sh
 # Records a simulated mission as MCAP, then checks the file with the reference reader.
 #   record_and_check.sh OUT.mcap "CHECK ARGS" COLAG_SIM [SIM ARGS...]
-# Exit: the check's (0 good, 1 a check failed, 2 packages missing); colag_sim's 2 (bad input).
+# Exit: the check's (0 good, 1 a check failed, 77 its packages missing: skipped); colag_sim's 2
+# (bad input).
 set -u
 out=$1 checks=$2
 shift 2
