@@ -23,6 +23,7 @@ using namespace std::chrono_literals;
 
 struct UgvRig {
   UgvRig() {
+    test::confine_dds_to_loopback();  // before the first participant (qemu has no multicast)
     config.id = 7;
     config.goal = Vec2(0.0, -10.0);
     task = std::make_unique<ugv::UgvNavTask>(config, bus, odo, drive);
