@@ -66,7 +66,7 @@ void UavRos2Bridge::step(TimePoint now) {
   for (int k = 0; k < rows_per_step_ && sweep_row_ < g.cells_y(); ++k, ++sweep_row_)
     for (int x = 0; x < g.cells_x(); ++x)
       sweep_[g.index({x, sweep_row_})] = task_.sharer().classify(task_.mapper(), x, sweep_row_);
-  if (sweep_row_ == g.cells_y()) sweep_done_ = true;
+  const bool sweep_done = sweep_row_ == g.cells_y();
   const msg::SupportPlan& plan = task_.plan();
   const bool offered = mailbox_.offer([&](Snapshot& s) {
     s.odometry = task_.last_odometry();
@@ -77,7 +77,7 @@ void UavRos2Bridge::step(TimePoint now) {
     }
     s.new_plan = !plan_sent_ || plan.seq != plan_seq_;
     if (s.new_plan) s.plan = plan;
-    s.map = sweep_done_;
+    s.map = sweep_done;
     if (s.map) std::copy(sweep_.begin(), sweep_.end(), s.cells.begin());
   });
   if (!offered) {
@@ -86,10 +86,7 @@ void UavRos2Bridge::step(TimePoint now) {
   }
   plan_sent_ = true;
   plan_seq_ = plan.seq;
-  if (sweep_done_) {
-    sweep_done_ = false;
-    sweep_row_ = 0;
-  }
+  if (sweep_done) sweep_row_ = 0;
 }
 
 void UavRos2Bridge::publish(const Snapshot& s) {

@@ -31,7 +31,6 @@ UgvRos2Bridge::~UgvRos2Bridge() {
 
 bool UgvRos2Bridge::start(std::uint32_t domain, const board::Ros2Config& config,
                           std::string& error) {
-  config_ = config;
   ns_ = config.ns.empty() ? "ugv" + std::to_string(task_.config().id) : config.ns;
   status_period_ = seconds(config.status_period_s);
   map_period_ = seconds(config.map_period_s);

@@ -57,7 +57,6 @@ class UavRos2Bridge final : public platform::Task {
   // The map view, swept a slice of rows per step on the task's thread.
   std::vector<CellState> sweep_;
   int sweep_row_ = 0, rows_per_step_ = 1;
-  bool sweep_done_ = false;
   std::uint32_t plan_seq_ = 0;
   bool plan_sent_ = false;
 

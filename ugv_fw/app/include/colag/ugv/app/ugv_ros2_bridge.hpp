@@ -64,7 +64,6 @@ class UgvRos2Bridge final : public platform::Task {
   void take_goals();
 
   UgvNavTask& task_;
-  board::Ros2Config config_;
   std::string ns_;
   Duration status_period_{}, map_period_{};
   TimePoint next_status_{}, next_map_{};
