@@ -38,6 +38,44 @@ std::string relative_to(const std::string& config_file, const std::string& path)
   return slash == std::string::npos ? path : config_file.substr(0, slash + 1) + path;
 }
 
+void read_dds_security(Reader& r, const YAML::Node& sec, const std::string& where,
+                       platform::DdsSecurityConfig& s) {
+  r.only(sec, where,
+         {"identity_ca", "certificate", "private_key", "permissions_ca", "governance",
+          "permissions", "plugin_dir"});
+  const std::pair<const char*, std::string*> files[] = {
+      {"identity_ca", &s.identity_ca}, {"certificate", &s.certificate},
+      {"private_key", &s.private_key}, {"permissions_ca", &s.permissions_ca},
+      {"governance", &s.governance},   {"permissions", &s.permissions},
+  };
+  for (const auto& [key, value] : files) {
+    r.get(sec, where, key, *value);
+    *value = relative_to(r.file(), *value);
+  }
+  r.get(sec, where, "plugin_dir", s.plugin_dir);
+  if (s.enabled()) {
+    for (const auto& [key, value] : files)
+      if (value->empty()) r.fail(where + "." + key, "required when security is on");
+    for (const auto& [key, value] : files)  // --check-config must catch a wrong path
+      if (r.ok() && !std::ifstream(*value)) r.fail(where + "." + key, "cannot read " + *value);
+  }
+}
+
+bool read_security_file(const std::string& file, platform::DdsSecurityConfig& out,
+                        std::string& error) {
+  error.clear();
+  YAML::Node doc;
+  if (!load_document(file, nullptr, doc, error)) return false;
+  Reader r(file, error);
+  r.only(doc, "", {"security"});
+  platform::DdsSecurityConfig s;
+  read_dds_security(r, child(doc, "security"), "security", s);
+  if (r.ok() && !s.enabled()) r.fail("security", "missing");
+  if (!r.ok()) return false;
+  out = s;
+  return true;
+}
+
 void read_common(Reader& r, const YAML::Node& doc, const std::vector<std::string>& robot_sections,
                  CommonBoardConfig& out) {
   std::set<std::string> sections(robot_sections.begin(), robot_sections.end());
@@ -48,29 +86,7 @@ void read_common(Reader& r, const YAML::Node& doc, const std::vector<std::string
   r.get(dds, "dds", "domain", out.dds_domain, 0u, 232u);  // DDS allows domain ids 0..232
   r.get(dds, "dds", "partition", out.dds_partition);
   // dds.security: the files scripts/security/make-pki writes for this robot.
-  const YAML::Node sec = child(dds, "security");
-  r.only(sec, "dds.security",
-         {"identity_ca", "certificate", "private_key", "permissions_ca", "governance",
-          "permissions", "plugin_dir"});
-  platform::DdsSecurityConfig& s = out.dds_security;
-  const std::pair<const char*, std::string*> files[] = {
-      {"identity_ca", &s.identity_ca}, {"certificate", &s.certificate},
-      {"private_key", &s.private_key}, {"permissions_ca", &s.permissions_ca},
-      {"governance", &s.governance},   {"permissions", &s.permissions},
-  };
-  for (const auto& [key, value] : files) {
-    r.get(sec, "dds.security", key, *value);
-    *value = relative_to(r.file(), *value);
-  }
-  r.get(sec, "dds.security", "plugin_dir", s.plugin_dir);
-  if (s.enabled()) {
-    for (const auto& [key, value] : files)
-      if (value->empty())
-        r.fail(std::string("dds.security.") + key, "required when security is on");
-    for (const auto& [key, value] : files)  // --check-config must catch a wrong path
-      if (r.ok() && !std::ifstream(*value))
-        r.fail(std::string("dds.security.") + key, "cannot read " + *value);
-  }
+  read_dds_security(r, child(dds, "security"), "dds.security", out.dds_security);
   const YAML::Node rt = child(doc, "realtime");
   r.only(rt, "realtime", {"fifo_priority", "lock_memory"});
   r.get(rt, "realtime", "fifo_priority", out.realtime.fifo_priority, 0, 99);
@@ -92,8 +108,6 @@ void read_common(Reader& r, const YAML::Node& doc, const std::vector<std::string
                   }) &&
       (o.ns.empty() || !std::isdigit(static_cast<unsigned char>(o.ns[0])));
   if (!name_ok) r.fail("ros2.namespace", "not a ROS name (letters, digits, _ and /)");
-  if (o.enabled && out.dds_security.enabled())
-    r.fail("ros2.enabled", "not with dds.security yet: the ROS 2 topics would bypass it");
 }
 
 }  // namespace colag::board

@@ -1,6 +1,7 @@
 #include "colag/platform/dds/dds_transport.hpp"
 
 #include "colag/platform/dds/convert.hpp"
+#include "colag/platform/dds/dds_security.hpp"
 
 #include <chrono>
 #include <cstdio>
@@ -45,66 +46,12 @@ dds_qos_t* DdsTransport::make_qos(const msg::TopicInfo& info) const {
   return qos;
 }
 
-// The participant's security properties (the DDS Security spec's dds.sec.* names). Every file
-// must be readable: a typo must fail here with its name, not later as an opaque DDS error.
-Status DdsTransport::security_qos(dds_qos_t* qos) const {
-  const DdsSecurityConfig& sec = config_.security;
-  struct File {
-    const std::string& path;
-    const char* property;
-    const char* missing;
-  };
-  const File files[] = {
-      {sec.identity_ca, "dds.sec.auth.identity_ca", "DDS security: identity_ca unreadable"},
-      {sec.certificate, "dds.sec.auth.identity_certificate",
-       "DDS security: certificate unreadable"},
-      {sec.private_key, "dds.sec.auth.private_key", "DDS security: private_key unreadable"},
-      {sec.permissions_ca, "dds.sec.access.permissions_ca",
-       "DDS security: permissions_ca unreadable"},
-      {sec.governance, "dds.sec.access.governance", "DDS security: governance unreadable"},
-      {sec.permissions, "dds.sec.access.permissions", "DDS security: permissions unreadable"},
-  };
-  for (const File& f : files) {
-    if (std::FILE* fp = std::fopen(f.path.c_str(), "rb")) {
-      std::fclose(fp);
-    } else {
-      return {Errc::kInvalidArgument, f.missing};
-    }
-    dds_qset_prop(qos, f.property, ("file:" + f.path).c_str());
-  }
-  const std::string dir = sec.plugin_dir.empty() ? COLAG_DDS_SECURITY_PLUGIN_DIR : sec.plugin_dir;
-  const struct {
-    const char* kind;
-    const char* library;
-    const char* init;
-    const char* fini;
-  } plugins[] = {
-      {"auth", "libdds_security_auth.so", "init_authentication", "finalize_authentication"},
-      {"access", "libdds_security_ac.so", "init_access_control", "finalize_access_control"},
-      {"crypto", "libdds_security_crypto.so", "init_crypto", "finalize_crypto"},
-  };
-  for (const auto& p : plugins) {
-    const std::string prefix = std::string("dds.sec.") + p.kind + ".library.";
-    dds_qset_prop(qos, (prefix + "path").c_str(), (dir + "/" + p.library).c_str());
-    dds_qset_prop(qos, (prefix + "init").c_str(), p.init);
-    dds_qset_prop(qos, (prefix + "finalize").c_str(), p.fini);
-  }
-  return Status::ok();
-}
-
 Status DdsTransport::init(const DdsConfig& config) {
   if (participant_ > 0) return {Errc::kInvalidArgument, "DDS transport initialised twice"};
   config_ = config;
-  dds_qos_t* pqos = nullptr;
-  if (config_.security.enabled()) {
-    pqos = dds_create_qos();
-    if (Status s = security_qos(pqos); !s) {
-      dds_delete_qos(pqos);
-      return s;
-    }
-  }
-  participant_ = dds_create_participant(config.domain_id, pqos, nullptr);
-  if (pqos != nullptr) dds_delete_qos(pqos);
+  ParticipantQos pqos;
+  if (Status s = pqos.init(config_.security); !s) return s;
+  participant_ = dds_create_participant(config.domain_id, pqos.get(), nullptr);
   if (participant_ < 0) {
     return fail(participant_, config_.security.enabled()
                                   ? "dds_create_participant failed (security: identity, "

@@ -9,6 +9,10 @@
 //   intruder  a valid fleet identity allowed to publish UGV status only: tries to create map
 //             patch and relative pose writers; exits 3 when access control refuses them, 0 if it
 //             could publish (a failure of the test)
+// ROS 2 commands to UGV 1 (rt/ugv1/command, colag_msgs/UgvCommand, every 100 ms):
+//   operator             the fleet's operator identity: PAUSE (the only one allowed)
+//   ROLE-commands        ROLE = rogue, plain, forger, intruder as above: ABORT; exits 3 when its
+//                        own access control refuses the writer (the intruder's case)
 // Exit 2: usage or set-up error.
 #include <chrono>
 #include <cstdio>
@@ -16,9 +20,13 @@
 #include <string>
 #include <thread>
 
+#include "colag/hal/dds/device_participant.hpp"
+#include "colag/hal/ros2/ros2_names.hpp"
+#include "colag/platform/dds/dds_security.hpp"
 #include "colag/platform/dds/dds_transport.hpp"
 #include "colag/platform/readers.hpp"
 #include "dds_test_env.hpp"
+#include "ros2_msgs.h"
 
 using namespace colag;
 using namespace std::chrono_literals;
@@ -37,6 +45,42 @@ platform::DdsSecurityConfig identity(const std::string& pki, const std::string& 
   return s;
 }
 
+// Sends `command` to UGV 1 over ROS 2 for `run_for` as `role`, secured by `security`.
+int send_commands(const std::string& role, std::uint32_t domain,
+                  const platform::DdsSecurityConfig& security, std::uint8_t command,
+                  std::chrono::seconds run_for) {
+  platform::dds::ParticipantQos qos;
+  if (Status s = qos.init(security); !s) {
+    std::printf("colag_dds_secure_peer %s: %s\n", role.c_str(), s.message());
+    return 2;
+  }
+  hal::dds::DeviceParticipant dds;
+  if (!dds.init(domain, qos.get())) {
+    std::printf("colag_dds_secure_peer %s: %s\n", role.c_str(), dds.last_error().c_str());
+    return 2;
+  }
+  const dds_entity_t w =
+      dds.writer(hal::ros2::ros2_dds_topic("ugv1", "command"), colag_msgs_msg_dds__UgvCommand__desc,
+                 {.reliable = true, .depth = 10});
+  if (w <= 0) {
+    std::printf("colag_dds_secure_peer %s: no command writer: %s\n", role.c_str(),
+                dds.last_error().c_str());
+    return dds.last_error().find("Security") != std::string::npos ? 3 : 2;
+  }
+  colag_msgs_msg_dds__UgvCommand_ c{};
+  c.header.frame_id = const_cast<char*>("");  // NOLINT(cppcoreguidelines-pro-type-const-cast)
+  c.command = command;
+  const auto end = std::chrono::steady_clock::now() + run_for;
+  while (std::chrono::steady_clock::now() < end) {
+    ++c.id;
+    (void)dds_write(w, &c);
+    std::this_thread::sleep_for(100ms);
+  }
+  std::printf("colag_dds_secure_peer %s: sent %u commands %u\n", role.c_str(), c.id,
+              static_cast<unsigned>(command));
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -46,7 +90,10 @@ int main(int argc, char** argv) {
         "usage: colag_dds_secure_peer uav|rogue|plain|forger|intruder DOMAIN PKI SECONDS\n");
     return 2;
   }
-  const std::string role = argv[1], pki = argv[3];
+  const std::string pki = argv[3];
+  std::string role = argv[1];
+  const bool commands = role == "operator" || role.ends_with("-commands");
+  if (role.ends_with("-commands")) role.resize(role.size() - 9);
   const auto run_for = std::chrono::seconds(std::atoi(argv[4]));
   test::confine_dds_to_loopback();
   platform::dds::DdsConfig cfg;
@@ -69,11 +116,16 @@ int main(int argc, char** argv) {
     uav_id = 88;
   } else if (role == "intruder") {
     cfg.security = identity(pki, "intruder", pki + "/ca.pem");
+  } else if (role == "operator") {
+    cfg.security = identity(pki, "operator", pki + "/ca.pem");
   } else {
     std::fprintf(stderr, "colag_dds_secure_peer: unknown role %s\n", role.c_str());
     return 2;
   }
 
+  if (commands) {
+    return send_commands(role, cfg.domain_id, cfg.security, role == "operator" ? 1 : 3, run_for);
+  }
   platform::dds::DdsTransport dds;
   if (Status s = dds.init(cfg); !s) {
     std::printf("colag_dds_secure_peer %s: %s (%s)\n", role.c_str(), s.message(),

@@ -3,7 +3,8 @@
 // it: the UAV (fleet identity), a rogue (identity from another CA, claiming to be the UAV), a
 // participant without security, an intruder (valid identity, no permission for those topics) and a
 // forger (the intruder's identity with UAV permissions it signed itself).
-// Only the UAV's samples may arrive, and the UAV must hear the UGV.
+// Only the UAV's samples may arrive, and the UAV must hear the UGV. Then the same over ROS 2:
+// only the operator identity's commands reach UGV 1's ROS 2 bridge.
 #include <gtest/gtest.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -14,7 +15,10 @@
 #include <string>
 #include <thread>
 
+#include "colag/hal/scripted/scripted_devices.hpp"
 #include "colag/platform/dds/dds_transport.hpp"
+#include "colag/platform/loopback_transport.hpp"
+#include "colag/ugv/app/ugv_ros2_bridge.hpp"
 #include "dds_test_env.hpp"
 
 namespace {
@@ -55,6 +59,16 @@ int exit_code(pid_t pid) {
   return WEXITSTATUS(status);
 }
 
+platform::DdsSecurityConfig fleet_identity(const std::string& pki, const std::string& who) {
+  platform::DdsSecurityConfig s;
+  s.identity_ca = s.permissions_ca = pki + "/ca.pem";
+  s.certificate = pki + "/" + who + "/identity.pem";
+  s.private_key = pki + "/" + who + "/key.pem";
+  s.governance = pki + "/governance.p7s";
+  s.permissions = pki + "/" + who + "/permissions.p7s";
+  return s;
+}
+
 TEST(DdsSecurity, OnlyTheFleetUavReachesTheUgvAndTheMissionTrafficFlows) {
   const std::string pki = COLAG_TEST_PKI_DIR;
   if (!std::filesystem::exists(pki + "/ugv1/identity.pem"))
@@ -67,12 +81,7 @@ TEST(DdsSecurity, OnlyTheFleetUavReachesTheUgvAndTheMissionTrafficFlows) {
 
   platform::dds::DdsConfig cfg;
   cfg.domain_id = domain;
-  cfg.security.identity_ca = pki + "/ca.pem";
-  cfg.security.certificate = pki + "/ugv1/identity.pem";
-  cfg.security.private_key = pki + "/ugv1/key.pem";
-  cfg.security.permissions_ca = pki + "/ca.pem";
-  cfg.security.governance = pki + "/governance.p7s";
-  cfg.security.permissions = pki + "/ugv1/permissions.p7s";
+  cfg.security = fleet_identity(pki, "ugv1");
   cfg.publish_only<msg::CollisionInfo, msg::UgvStatus>();
   platform::dds::DdsTransport dds;
   ASSERT_TRUE(dds.init(cfg)) << dds_strretcode(dds.last_error());
@@ -111,6 +120,56 @@ TEST(DdsSecurity, OnlyTheFleetUavReachesTheUgvAndTheMissionTrafficFlows) {
       "UGV 1 accepted %d patches and %d relative poses from the fleet UAV, %d / %d from "
       "others\n",
       patches.fleet, poses.fleet, patches.other, poses.other);
+}
+
+// UGV 1's ROS 2 bridge, secured with its identity, takes commands from the operator (PAUSE)
+// while a rogue, an unsecured participant and a forger send ABORT and the intruder (a fleet
+// identity without the permission) cannot even create its writer: it must end paused, never
+// aborted, every command it took the operator's.
+TEST(DdsSecurity, OnlyTheOperatorCommandsAUgvOverRos2) {
+  const std::string pki = COLAG_TEST_PKI_DIR;
+  if (!std::filesystem::exists(pki + "/operator/identity.pem"))
+    GTEST_SKIP() << "no test PKI in " << pki << " (the dds.security.pki fixture creates it)";
+  test::confine_dds_to_loopback();
+  const std::uint32_t domain = test::private_domain_id();
+  EXPECT_EQ(exit_code(spawn("intruder-commands", domain, pki, "1")), 3);
+
+  ugv::UgvNavConfig config;
+  config.id = 1;
+  platform::LoopbackTransport bus{1};
+  hal::scripted::ScriptedWheelOdometry odo;
+  hal::scripted::RecordingDrive drive;
+  ugv::UgvNavTask task(config, bus, odo, drive);
+  ugv::UgvRos2Bridge bridge(task);
+  board::Ros2Config ros2;
+  ros2.enabled = true;
+  std::string error;
+  ASSERT_TRUE(bridge.start(domain, ros2, fleet_identity(pki, "ugv1"), error)) << error;
+
+  const pid_t op = spawn("operator", domain, pki, "6");
+  const pid_t rogue = spawn("rogue-commands", domain, pki, "6");
+  const pid_t plain = spawn("plain-commands", domain, pki, "6");
+  const pid_t forger = spawn("forger-commands", domain, pki, "6");
+  for (pid_t p : {op, rogue, plain, forger})
+    ASSERT_GT(p, 0);
+  TimePoint now{};
+  const auto end = std::chrono::steady_clock::now() + 7s;
+  while (std::chrono::steady_clock::now() < end) {
+    bridge.step(now += 50ms);
+    std::this_thread::sleep_for(50ms);
+  }
+  EXPECT_EQ(exit_code(op), 0);
+  EXPECT_EQ(exit_code(plain), 0);
+  EXPECT_EQ(exit_code(forger), 0);  // its forged permissions let it write: UGV 1 must not take
+  // The rogue holds the UAV's permissions (no commands): its own access control refuses it.
+  EXPECT_EQ(exit_code(rogue), 3);
+  const ugv::UgvRos2Counters c = bridge.counters();
+  EXPECT_TRUE(task.paused());
+  EXPECT_FALSE(task.aborted());
+  EXPECT_GE(c.commands, 20U);  // the operator's ~10/s, after authentication
+  EXPECT_EQ(c.commands_refused, 0U);
+  std::printf("UGV 1 took %llu commands over ROS 2, all the operator's\n",
+              static_cast<unsigned long long>(c.commands));
 }
 
 TEST(DdsSecurity, AMissingFileIsNamedBeforeDdsStarts) {

@@ -58,19 +58,42 @@ bool step_until(ugv::UgvRos2Bridge& b, TimePoint& now, Done&& done, std::chrono:
   return false;
 }
 
+// Starts the rig's bridge on a private domain and a ROS 2 peer's reliable writer on its
+// `topic` (as RViz2 and `ros2 topic pub` publish).
+struct BridgeAndTool {
+  BridgeAndTool(UgvRig& rig, const char* topic, const dds_topic_descriptor_t& type) {
+    const std::uint32_t domain = test::private_domain_id();
+    board::Ros2Config cfg;
+    cfg.enabled = true;
+    std::string error;
+    started = rig.bridge->start(domain, cfg, {}, error);
+    EXPECT_TRUE(started) << error;
+    EXPECT_TRUE(tool.init(domain));
+    writer = tool.writer(hal::ros2::ros2_dds_topic("ugv7", topic), type,
+                         {.reliable = true, .depth = 10});
+    EXPECT_GT(writer, 0) << tool.last_error();
+    // Matched with the bridge's reader before anything is sent: a reliable sample is then
+    // delivered once (tests that count must not send twice).
+    const auto end = std::chrono::steady_clock::now() + 10s;
+    dds_publication_matched_status_t m{};
+    while (writer > 0 && m.current_count == 0 && std::chrono::steady_clock::now() < end) {
+      (void)dds_get_publication_matched_status(writer, &m);
+      std::this_thread::sleep_for(10ms);
+    }
+    matched = m.current_count > 0;
+    EXPECT_TRUE(matched);
+  }
+  bool ok() const { return started && writer > 0 && matched; }
+  hal::dds::DeviceParticipant tool;
+  dds_entity_t writer = 0;
+  bool started = false, matched = false;
+};
+
 TEST(UgvRos2Bridge, GoalsFromRos2AreValidatedByTheTaskAndAnswered) {
   UgvRig rig;
-  const std::uint32_t domain = test::private_domain_id();
-  board::Ros2Config cfg;
-  cfg.enabled = true;
-  std::string error;
-  ASSERT_TRUE(rig.bridge->start(domain, cfg, error)) << error;
-  hal::dds::DeviceParticipant tool;
-  ASSERT_TRUE(tool.init(domain));
-  const dds_entity_t w =
-      tool.writer(hal::ros2::ros2_dds_topic("ugv7", "goal_pose"),
-                  geometry_msgs_msg_dds__PoseStamped__desc, {.reliable = true, .depth = 10});
-  ASSERT_GT(w, 0) << tool.last_error();
+  BridgeAndTool peer(rig, "goal_pose", geometry_msgs_msg_dds__PoseStamped__desc);
+  ASSERT_TRUE(peer.ok());
+  const dds_entity_t w = peer.writer;
   TimePoint now{};
   // A goal in another frame: refused, the goal unchanged.
   const auto odom_goal = goal(3.0, 4.0, "odom");
@@ -104,6 +127,43 @@ TEST(UgvRos2Bridge, GoalsFromRos2AreValidatedByTheTaskAndAnswered) {
       10s));
 }
 
+// Commands are applied in the order sent; a refusal (resume without a pause, an unknown
+// command, return before it knows its start) changes nothing and is counted.
+TEST(UgvRos2Bridge, CommandsFromRos2AreAppliedInOrderOrRefused) {
+  UgvRig rig;
+  BridgeAndTool peer(rig, "command", colag_msgs_msg_dds__UgvCommand__desc);
+  ASSERT_TRUE(peer.ok());
+  const dds_entity_t w = peer.writer;
+  TimePoint now{};
+  std::uint32_t next_id = 0;
+  // Sends `command` once, and waits until the bridge has taken it.
+  auto send = [&](std::uint8_t command) {
+    colag_msgs_msg_dds__UgvCommand_ c{};
+    c.header.frame_id = const_cast<char*>("");  // NOLINT(cppcoreguidelines-pro-type-const-cast)
+    c.id = ++next_id;
+    c.command = command;
+    const std::uint64_t before = rig.bridge->counters().commands;
+    return dds_write(w, &c) == DDS_RETCODE_OK &&
+           step_until(
+               *rig.bridge, now, [&] { return rig.bridge->counters().commands > before; }, 10s);
+  };
+  auto until = [&](auto done) { return step_until(*rig.bridge, now, done, 5s); };
+  ASSERT_TRUE(send(1));  // pause
+  EXPECT_TRUE(until([&] { return rig.task->paused(); }));
+  const std::uint64_t refused = rig.bridge->counters().commands_refused;
+  ASSERT_TRUE(send(2));  // resume
+  EXPECT_TRUE(until([&] { return !rig.task->paused(); }));
+  ASSERT_TRUE(send(2));   // resume again: not paused
+  ASSERT_TRUE(send(42));  // unknown
+  ASSERT_TRUE(send(4));   // return: not localised, its start unknown
+  EXPECT_TRUE(until([&] { return rig.bridge->counters().commands_refused == refused + 3; }))
+      << rig.bridge->counters().commands_refused - refused;
+  EXPECT_EQ(rig.task->goal(), Vec2(0.0, -10.0));
+  EXPECT_FALSE(rig.task->paused());
+  ASSERT_TRUE(send(3));  // abort
+  EXPECT_TRUE(until([&] { return rig.task->aborted(); }));
+}
+
 // The step runs on the task's thread: a copy into the mailbox, nothing allocated (DDS runs on
 // the bridge's own thread).
 TEST(UgvRos2Bridge, StepAllocatesNothingOnTheTasksThread) {
@@ -113,7 +173,7 @@ TEST(UgvRos2Bridge, StepAllocatesNothingOnTheTasksThread) {
   cfg.map_period_s = 0.1;  // the map copy every step
   cfg.status_period_s = 0.1;
   std::string error;
-  ASSERT_TRUE(rig.bridge->start(test::private_domain_id(), cfg, error)) << error;
+  ASSERT_TRUE(rig.bridge->start(test::private_domain_id(), cfg, {}, error)) << error;
   TimePoint now{};
   for (int i = 0; i < 5; ++i) {  // warm-up
     now += 100ms;

@@ -3,11 +3,14 @@
 // rt/<ns>/odom (nav_msgs::msg::dds_::Odometry_), rt/tf (tf2_msgs::msg::dds_::TFMessage_) and
 // rt/<ns>/status, then sends goals on rt/<ns>/goal_pose as RViz2's "2D Goal Pose" does: first
 // one in a wrong frame (the UGV must refuse it and say why), then the real one, which the UGV
-// must drive to and arrive at; then (--then) a last goal, sent once it arrived, which it must
-// accept (a SITL mission then ends at that goal).
+// must drive to and arrive at; on its way, it pauses it on rt/<ns>/command (the status must
+// acknowledge the command's id and the UGV stand for 2 s) and resumes it; then
+// (--then) a last goal, sent once it arrived, which it must accept (a SITL mission then ends at
+// that goal).
 //   colag_fastdds_ros2_tool --domain D --ns ugv0 --goal X Y [--then X Y] [--timeout S]
-// Exit: 0 the UGV arrived at the goal (its status says so, its odometry within 0.6 m) and took
-// the last one; 1 not (what was missing is printed); 2 usage.
+// Exit: 0 the UGV stood while paused, arrived at the goal (its status says so, its odometry
+// within 0.6 m) and took the last one; 1 not (what was missing is printed); 2 usage.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -93,7 +96,10 @@ int main(int argc, char** argv) {
   // As RViz2 publishes goals: reliable, volatile.
   DataWriter* goal =
       p.writer("rt/" + ns + "/goal_pose", new geo::PoseStamped_PubSubType(), true, false, 10);
-  if (odom == nullptr || tf == nullptr || status == nullptr || goal == nullptr) {
+  DataWriter* command = p.writer(
+      "rt/" + ns + "/command", new colag_msgs::msg::dds_::UgvCommand_PubSubType(), true, false, 10);
+  if (odom == nullptr || tf == nullptr || status == nullptr || goal == nullptr ||
+      command == nullptr) {
     std::fprintf(stderr, "ros2_tool: endpoints not created\n");
     finish(1);
   }
@@ -107,6 +113,9 @@ int main(int argc, char** argv) {
   enum class Phase { kListening, kWrongFrame, kGoal, kThen, kDone } phase = Phase::kListening;
   bool odom_seen = false, tf_seen = false, refused = false, accepted = false, arrived = false;
   double x = 0, y = 0, last_send = -10;
+  // Pause on the way (id 1), stand 2 s, resume (id 2).
+  enum class Hold { kNotYet, kPausing, kPaused, kResuming, kResumed } hold = Hold::kNotYet;
+  double paused_at = 0, px = 0, py = 0, held_m = -1, held_v = 0, v = 0, last_command = -10;
   SampleInfo info;
   while (phase != Phase::kDone && since(t0) < timeout) {
     nav_msgs::msg::dds_::Odometry_ o;
@@ -114,6 +123,7 @@ int main(int argc, char** argv) {
       if (!info.valid_data) continue;
       x = o.pose().pose().position().x();
       y = o.pose().pose().position().y();
+      v = o.twist().twist().linear().x();  // the speed it commands
       if (!odom_seen)
         std::printf("ros2_tool: %.1f s: odometry in frame %s, child %s, at (%.2f, %.2f)\n",
                     since(t0), o.header().frame_id().c_str(), o.child_frame_id().c_str(), x, y);
@@ -143,7 +153,21 @@ int main(int argc, char** argv) {
           std::printf("ros2_tool: %.1f s: goal (%.2f, %.2f) %s, mode %s\n", since(t0), gx, gy,
                       s.last_goal_text().c_str(), s.mode_name().c_str());
         accepted = true;
-        if (s.mode() == 3 && std::hypot(x - gx, y - gy) < 0.6 && !arrived) {
+        if (hold == Hold::kNotYet && s.mode() == 1) hold = Hold::kPausing;  // driving: pause it
+        if (hold == Hold::kPausing && s.last_command_id() == 1 && s.mode() == 9) {
+          std::printf("ros2_tool: %.1f s: pause (id 1) %s, mode %s\n", since(t0),
+                      s.last_command_text().c_str(), s.mode_name().c_str());
+          hold = Hold::kPaused;
+          paused_at = since(t0);
+        }
+        if (hold == Hold::kResuming && s.last_command_id() == 2 && s.mode() != 9 &&
+            s.last_command_result() == 0) {
+          std::printf("ros2_tool: %.1f s: resume (id 2) %s, mode %s\n", since(t0),
+                      s.last_command_text().c_str(), s.mode_name().c_str());
+          hold = Hold::kResumed;
+        }
+        if (hold == Hold::kResumed && s.mode() == 3 && std::hypot(x - gx, y - gy) < 0.6 &&
+            !arrived) {
           std::printf("ros2_tool: %.1f s: arrived at (%.2f, %.2f), %.2f m from the goal\n",
                       since(t0), x, y, std::hypot(x - gx, y - gy));
           arrived = true;
@@ -168,6 +192,34 @@ int main(int argc, char** argv) {
       goal->write(&g);
       last_send = since(t0);
     }
+    // Paused: 1 s to brake, then it must stand for 2 s.
+    if (hold == Hold::kPaused && since(t0) - paused_at > 1.0 && held_m < 0) {
+      px = x;
+      py = y;
+      held_m = 0;
+    }
+    if (hold == Hold::kPaused && held_m >= 0) {
+      held_m = std::max(held_m, std::hypot(x - px, y - py));
+      held_v = std::max(held_v, std::abs(v));
+    }
+    // Standing: it commands nothing (its estimate may still move by the relative poses' fixes).
+    if (hold == Hold::kPaused && since(t0) - paused_at > 3.0) {
+      std::printf(
+          "ros2_tool: %.1f s: stood 2 s: commanded speed at most %.3f m/s, its estimate "
+          "moved %.3f m\n",
+          since(t0), held_v, held_m);
+      if (held_v > 0.0 || held_m > 0.3) break;
+      hold = Hold::kResuming;
+      last_command = -10;
+    }
+    const bool pausing = hold == Hold::kPausing, resuming = hold == Hold::kResuming;
+    if ((pausing || resuming) && since(t0) - last_command > 1.0) {
+      colag_msgs::msg::dds_::UgvCommand_ c;
+      c.id(pausing ? 1 : 2);
+      c.command(pausing ? 1 : 2);
+      command->write(&c);
+      last_command = since(t0);
+    }
     if (phase == Phase::kThen && since(t0) - last_send > 1.0) {
       geo::PoseStamped_ g = goal_msg(tx, ty, "map");
       goal->write(&g);
@@ -177,14 +229,18 @@ int main(int argc, char** argv) {
   }
   if (phase == Phase::kDone) {
     std::printf(
-        "ros2_tool: PASS: odometry and /tf seen, a wrong frame refused, the goal reached%s\n",
+        "ros2_tool: PASS: odometry and /tf seen, a wrong frame refused, paused and resumed, the "
+        "goal reached%s\n",
         have_then ? ", the last goal taken" : "");
     finish(0);
   }
   std::printf(
       "ros2_tool: FAIL after %.0f s: odometry %s, /tf %s, wrong frame refused %s, goal "
-      "accepted %s, arrived %s, UGV at (%.2f, %.2f)\n",
+      "accepted %s, pause/resume step %d (%.3f m/s, %.3f m while paused), arrived %s, UGV at "
+      "(%.2f, "
+      "%.2f)\n",
       since(t0), odom_seen ? "seen" : "never", tf_seen ? "seen" : "never", refused ? "yes" : "no",
-      accepted ? "yes" : "no", arrived ? "yes" : "no", x, y);
+      accepted ? "yes" : "no", static_cast<int>(hold), held_v, held_m, arrived ? "yes" : "no", x,
+      y);
   finish(1);
 }

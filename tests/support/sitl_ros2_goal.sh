@@ -2,7 +2,8 @@
 # SITL with every UGV's ROS 2 telemetry on, and a ROS 2 tool of another DDS vendor (Fast DDS)
 # watching UGV 0 and sending it goals: first (0, 8), on its way, then its mission goal (0, -16),
 # so that the mission ends as planned. PASS when the tool saw odometry and /tf, had a wrong
-# frame refused, saw the UGV arrive at (0, 8), and the mission then completed; with --mcap F
+# frame refused, paused and resumed it on its way (it stood), saw the UGV arrive at (0, 8), and
+# the mission then completed; with --mcap F
 # among the options, the live recording (colag_record) must also pass the reference reader's
 # check (tests/mcap/check_mcap.mjs).
 #   sitl_ros2_goal.sh TOOL [sitl.sh options...]

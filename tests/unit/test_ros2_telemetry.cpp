@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <string>
 
 #include "allocation_counter.hpp"
@@ -29,6 +30,23 @@ TEST(Ros2Schemas, CarryEachDependencyOnceAfterTheType) {
   }
   EXPECT_TRUE(ros2msg_schema("nav_msgs/msg/NoSuchType").empty());
   EXPECT_TRUE(ros2msg_schema("nav_msgs/Odometry").empty());  // not a ROS 2 type name
+}
+
+// The ROS 2 package shipped for users (ros2/colag_msgs) declares the types the firmware sends
+// and the MCAP files carry: its .msg files, comments and blank lines dropped, are the schemas.
+TEST(Ros2Schemas, TheShippedColagMsgsPackageDeclaresTheSameTypes) {
+  for (const char* type : {"UgvStatus", "UavStatus", "UgvCommand"}) {
+    std::ifstream in(std::string(COLAG_ROS2_MSGS_DIR) + "/" + type + ".msg");
+    ASSERT_TRUE(in) << type;
+    std::string line, text;
+    while (std::getline(in, line)) {
+      line = line.substr(0, line.find('#'));
+      line = line.substr(0, line.find_last_not_of(' ') + 1);
+      if (!line.empty()) text += line + "\n";
+    }
+    const std::string schema = ros2msg_schema(std::string("colag_msgs/msg/") + type);
+    EXPECT_EQ(text, schema.substr(0, schema.find("====="))) << type;
+  }
 }
 
 TEST(Ros2Messages, UgvOdometryCarriesPoseCovarianceAndFrames) {

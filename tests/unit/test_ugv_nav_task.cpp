@@ -12,6 +12,7 @@
 #include "colag/platform/loopback_transport.hpp"
 #include "colag/uav/clock_server.hpp"
 #include "colag/ugv/ugv_nav_task.hpp"
+#include "colag/ugv/waiting.hpp"
 #include "map_fixtures.hpp"
 
 using namespace colag;
@@ -208,6 +209,54 @@ TEST(UgvNavTask, ANewGoalAtRunTimeIsValidatedThenDrivenTo) {
       << "mode " << static_cast<int>(rig.ugv->mode());
   EXPECT_LT((rig.world->truth.p - Vec2(4.0, 3.0)).norm(), 0.35);
   EXPECT_EQ(rig.ugv->last_status().goal_m[0], 4.0);
+}
+
+TEST(UgvNavTask, TheOperatorPausesResumesAbortsAndSendsItBackToItsStart) {
+  Rig rig(Vec2(4.0, 0.0));
+  rig.publish_map(-3.2, -3.2, 9.6, 6.4);
+  auto command = [&](UgvCommand c) {
+    return rig.ugv->request_command(static_cast<std::uint8_t>(c));
+  };
+  auto operator_s = [&] {
+    return to_seconds(rig.ugv->waiting_parts()[static_cast<std::size_t>(WaitPart::kOperator)]);
+  };
+  auto stands = [&](const char* what) {   // for 2 s, in the mode `what`
+    rig.ex.run_until(rig.ex.now() + 1s);  // braking
+    const Vec2 held = rig.world->truth.p;
+    const double before = operator_s();
+    rig.ex.run_until(rig.ex.now() + 2s);
+    EXPECT_LT((rig.world->truth.p - held).norm(), 0.02) << what;
+    EXPECT_NEAR(operator_s() - before, 2.0, 0.05) << what;  // its waiting says why
+  };
+  EXPECT_EQ(command(UgvCommand::kReturnToStart), CommandResult::kNoStart);  // not localised yet
+  ASSERT_TRUE(rig.run_until([&] { return rig.world->truth.p.x() > 1.0; }, 20s));
+  EXPECT_EQ(command(UgvCommand::kResume), CommandResult::kNotPaused);
+  EXPECT_EQ(rig.ugv->request_command(0), CommandResult::kUnknown);
+  EXPECT_EQ(rig.ugv->request_command(77), CommandResult::kUnknown);
+  EXPECT_EQ(rig.ugv->mode(), msg::UgvMode::kDriving);  // refusals change nothing
+
+  ASSERT_EQ(command(UgvCommand::kPause), CommandResult::kAccepted);
+  stands("paused");
+  EXPECT_EQ(rig.ugv->mode(), msg::UgvMode::kPaused);
+  EXPECT_EQ(rig.ugv->last_status().mode, msg::UgvMode::kPaused);
+  ASSERT_EQ(command(UgvCommand::kResume), CommandResult::kAccepted);
+  ASSERT_TRUE(rig.run_until([&] { return rig.ugv->mode() == msg::UgvMode::kArrived; }, 30s));
+  EXPECT_LT((rig.world->truth.p - Vec2(4.0, 0.0)).norm(), 0.35);
+
+  // Aborted on the way to another goal: it stands until it is given somewhere to go.
+  ASSERT_EQ(rig.ugv->request_goal(Vec2(4.0, 3.0)), GoalResult::kAccepted);
+  ASSERT_TRUE(rig.run_until([&] { return rig.world->truth.p.y() > 1.0; }, 20s));
+  ASSERT_EQ(command(UgvCommand::kAbort), CommandResult::kAccepted);
+  stands("aborted");
+  EXPECT_EQ(rig.ugv->mode(), msg::UgvMode::kAborted);
+  EXPECT_TRUE(rig.ugv->trajectory().empty());
+  EXPECT_EQ(command(UgvCommand::kResume), CommandResult::kNotPaused);  // an abort is not a pause
+
+  // Back to where it was first localised (near its true start, the origin).
+  ASSERT_EQ(command(UgvCommand::kReturnToStart), CommandResult::kAccepted);
+  ASSERT_TRUE(rig.run_until([&] { return rig.ugv->mode() == msg::UgvMode::kArrived; }, 40s))
+      << "mode " << static_cast<int>(rig.ugv->mode());
+  EXPECT_LT(rig.world->truth.p.norm(), 0.5);
 }
 
 TEST(UgvNavTask, StopsBeforeTheUnknownAsksForSupportAndGoesOnOnceItIsMapped) {

@@ -4,7 +4,10 @@
 // the CDR bytes it travelled as, with the type's ros2msg schema; log time = when it was received
 // (this host's wall clock), publish time = the writer's source timestamp.
 //
-//   colag_record --domain D --out FILE [--duration S]
+//   colag_record --domain D --out FILE [--duration S] [--security pki/operator/security.yaml]
+//
+// --security: join a fleet that runs DDS Security with an identity make-pki made (the operator's
+// may read every ROS 2 topic).
 //
 // Stops on SIGINT/SIGTERM or after --duration, then writes the file's summary. Prints progress
 // every 5 s. Exit codes: 0 recorded (the file is complete); 1 DDS or the file failed; 2 usage.
@@ -20,9 +23,11 @@
 #include <thread>
 #include <vector>
 
+#include "colag/board/config.hpp"
 #include "colag/hal/ros2/cdr.hpp"
 #include "colag/hal/ros2/ros2_schemas.hpp"
 #include "colag/hal/ros2/ros2_types.hpp"
+#include "colag/platform/dds/dds_security.hpp"
 #include "colag/sim/host_program.hpp"
 #include "colag/sim/mcap/mcap_writer.hpp"
 
@@ -59,10 +64,25 @@ int run(int argc, char** argv) {
   app.add_option("--out", out, "the MCAP file to write")->required();
   app.add_option("--duration", duration, "stop after this many seconds (default: at Ctrl-C)")
       ->check(CLI::PositiveNumber);
+  std::string security_file;
+  app.add_option("--security", security_file,
+                 "a secured fleet: the security.yaml of an identity from make-pki "
+                 "(pki/operator/security.yaml)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;
+  }
+  platform::DdsSecurityConfig security;
+  std::string error;
+  if (!security_file.empty() && !board::read_security_file(security_file, security, error)) {
+    std::fprintf(stderr, "colag_record: --security %s\n", error.c_str());
+    return 2;
+  }
+  platform::dds::ParticipantQos participant_qos;
+  if (Status s = participant_qos.init(security); !s) {
+    std::fprintf(stderr, "colag_record: --security: %s\n", s.message());
+    return 2;
   }
 
   mcap::McapWriter writer;
@@ -70,9 +90,11 @@ int run(int argc, char** argv) {
     std::fprintf(stderr, "colag_record: --out: %s\n", writer.error().c_str());
     return 2;
   }
-  const dds_entity_t participant = dds_create_participant(domain, nullptr, nullptr);
+  const dds_entity_t participant = dds_create_participant(domain, participant_qos.get(), nullptr);
   if (participant < 0) {
-    std::fprintf(stderr, "colag_record: DDS domain %u: %s\n", domain, dds_strretcode(participant));
+    std::fprintf(
+        stderr, "colag_record: DDS domain %u: %s%s\n", domain, dds_strretcode(participant),
+        security.enabled() ? " (security: identity, permissions or governance rejected?)" : "");
     return 1;
   }
   // Every writer on the domain, as discovery announces it.

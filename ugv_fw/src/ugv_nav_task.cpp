@@ -230,6 +230,10 @@ void UgvNavTask::drive(TimePoint now, double dt) {
   if (awaiting_fix_ && sure_of_position()) awaiting_fix_ = false;
   if (faulty()) {
     mode_ = msg::UgvMode::kFault;
+  } else if (paused_) {
+    mode_ = msg::UgvMode::kPaused;
+  } else if (aborted_) {
+    mode_ = msg::UgvMode::kAborted;
   } else if (uav_flight_ != msg::UavFlight::kInControl && ekf_.initialized() && !arrived_) {
     // Its flight controller failed safe, was taken over or lands: no support is coming and the
     // UAV itself may come down anywhere.
@@ -304,6 +308,7 @@ void UgvNavTask::planning_step(TimePoint now) {
     publish_status(now);
     return;
   }
+  if (!start_) start_ = ekf_.pose().p;
   if (ekf_.counters().resets != ekf_resets_seen_) {
     ekf_resets_seen_ = ekf_.counters().resets;
     replan_requested_ = true;
@@ -312,7 +317,7 @@ void UgvNavTask::planning_step(TimePoint now) {
   // robot stands on it.
   (void)map_.free_under(ekf_.pose().p, config_.body_radius_m);
   collect_others(now);
-  if (!arrived_ && !faulty() && replan_needed(now)) replan(now);
+  if (!arrived_ && !aborted_ && !faulty() && replan_needed(now)) replan(now);
   predict_and_request(now);
   publish_status(now);
 }
@@ -462,7 +467,8 @@ void UgvNavTask::predict_and_request(TimePoint now) {
     need.time_to_collision_s = 0.0;
   }
   blocked_.update(now, standing_reason());
-  if (blocked_.blocked()) need = SupportNeed{};  // let the UAV serve the others for a while
+  if (blocked_.blocked()) need = SupportNeed{};   // let the UAV serve the others for a while
+  if (paused_ || aborted_) need = SupportNeed{};  // held: it will not drive into anything
   msg::CollisionInfo ci;
   if (support_.update(now, config_.id, need, ci)) publish_request(ci);
 }
@@ -474,7 +480,8 @@ bool UgvNavTask::sure_of_position() const {
 }
 
 msg::BlockedReason UgvNavTask::standing_reason() const {
-  if (arrived_ || faulty()) return msg::BlockedReason::kNone;  // done, or its own mode
+  if (arrived_ || faulty() || paused_ || aborted_)
+    return msg::BlockedReason::kNone;  // done, or its own mode
   if (no_path_ || trajectory_.empty()) return msg::BlockedReason::kNoPath;
   if (stopped_for_support_ || awaiting_fix_) return msg::BlockedReason::kNotCleared;
   if (stopped_for_robot_) return msg::BlockedReason::kRobotInTheWay;
@@ -493,9 +500,35 @@ GoalResult UgvNavTask::request_goal(const Vec2& goal) {
   if (map_.state(c) == CellState::kOccupied) return GoalResult::kInObstacle;
   goal_ = goal;
   arrived_ = false;
+  aborted_ = false;
   awaiting_fix_ = false;
   replan_requested_ = true;
   return GoalResult::kAccepted;
+}
+
+CommandResult UgvNavTask::request_command(std::uint8_t command) {
+  switch (command) {
+    case static_cast<std::uint8_t>(UgvCommand::kPause):
+      paused_ = true;
+      return CommandResult::kAccepted;
+    case static_cast<std::uint8_t>(UgvCommand::kResume):
+      if (!paused_) return CommandResult::kNotPaused;
+      paused_ = false;
+      replan_requested_ = true;  // from where it stands now
+      return CommandResult::kAccepted;
+    case static_cast<std::uint8_t>(UgvCommand::kAbort):
+      aborted_ = true;
+      awaiting_fix_ = false;
+      trajectory_.clear();
+      prediction_ = Prediction{};
+      return CommandResult::kAccepted;
+    case static_cast<std::uint8_t>(UgvCommand::kReturnToStart):
+      if (!start_) return CommandResult::kNoStart;
+      return request_goal(*start_) == GoalResult::kAccepted ? CommandResult::kAccepted
+                                                            : CommandResult::kStartRefused;
+    default:
+      return CommandResult::kUnknown;
+  }
 }
 
 void UgvNavTask::publish_status(TimePoint now) {

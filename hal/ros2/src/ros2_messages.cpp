@@ -113,7 +113,17 @@ void OdometryMessage::set(const msg::UavOdometry& o) {
 UgvStatusMessage::UgvStatusMessage() {
   set_name(frame_, kMapFrame);
   msg_.header.frame_id = c_str(frame_);
-  msg_.mode_name = msg_.blocked_reason_text = msg_.base_fault_text = msg_.last_goal_text = kEmpty;
+  msg_.mode_name = msg_.blocked_reason_text = msg_.base_fault_text = msg_.last_goal_text =
+      msg_.last_command_text = kEmpty;
+}
+
+void UgvStatusMessage::set_commands(std::uint32_t received, std::uint32_t last_id,
+                                    std::uint8_t last, std::uint8_t last_result, const char* text) {
+  msg_.commands_received = received;
+  msg_.last_command_id = last_id;
+  msg_.last_command = last;
+  msg_.last_command_result = last_result;
+  msg_.last_command_text = c_str(received == 0 ? "" : text);
 }
 
 void UgvStatusMessage::set_goals(std::uint32_t received, std::uint8_t last_result,

@@ -91,14 +91,21 @@ constexpr std::array kDefinitions = {
     Definition{"colag_msgs/UgvStatus",
                "uint8 WAITING_FOR_INIT=0\nuint8 DRIVING=1\nuint8 WAITING_FOR_SUPPORT=2\n"
                "uint8 ARRIVED=3\nuint8 NO_PATH=4\nuint8 FAULT=5\nuint8 BLOCKED=6\n"
-               "uint8 WAITING_FOR_ROBOT=7\nuint8 UAV_UNAVAILABLE=8\n"
+               "uint8 WAITING_FOR_ROBOT=7\nuint8 UAV_UNAVAILABLE=8\nuint8 PAUSED=9\n"
+               "uint8 ABORTED=10\n"
                "std_msgs/Header header\nuint16 ugv_id\nuint8 mode\nstring mode_name\n"
                "uint8 blocked_reason\nstring blocked_reason_text\nuint8 base_fault\n"
                "string base_fault_text\nuint32 base_error\ngeometry_msgs/Point goal\n"
                "float64 waiting_time_s\nfloat64 clock_error_s\nuint32 rejected_inputs\n"
                "uint32 overruns\nuint8 degradation\nuint32 goals_received\n"
-               "uint8 last_goal_result\nstring last_goal_text\n",
+               "uint8 last_goal_result\nstring last_goal_text\nuint32 commands_received\n"
+               "uint32 last_command_id\nuint8 last_command\nuint8 last_command_result\n"
+               "string last_command_text\n",
                {"std_msgs/Header", "geometry_msgs/Point"}},
+    Definition{"colag_msgs/UgvCommand",
+               "uint8 PAUSE=1\nuint8 RESUME=2\nuint8 ABORT=3\nuint8 RETURN_TO_START=4\n"
+               "std_msgs/Header header\nuint32 id\nuint8 command\n",
+               {"std_msgs/Header"}},
     Definition{"colag_msgs/UavStatus",
                "uint8 IN_CONTROL=0\nuint8 STARTING=1\nuint8 LOST=2\nuint8 LANDING=3\n"
                "std_msgs/Header header\nuint16 uav_id\nuint8 flight\nstring flight_name\n"

@@ -24,6 +24,8 @@ const std::array kTypes = {
              &colag_msgs_msg_dds__UgvStatus__desc},
     Ros2Type{"colag_msgs::msg::dds_::UavStatus_", "colag_msgs/msg/UavStatus",
              &colag_msgs_msg_dds__UavStatus__desc},
+    Ros2Type{"colag_msgs::msg::dds_::UgvCommand_", "colag_msgs/msg/UgvCommand",
+             &colag_msgs_msg_dds__UgvCommand__desc},
 };
 
 }  // namespace

@@ -30,6 +30,10 @@ const char* doing(msg::UgvMode m) {
       return "waiting for another UGV";
     case msg::UgvMode::kUavUnavailable:
       return "stopped: the UAV's flight controller left the mission";
+    case msg::UgvMode::kPaused:
+      return "paused by its operator";
+    case msg::UgvMode::kAborted:
+      return "its mission aborted by its operator";
   }
   return "in an unknown mode";
 }

@@ -89,7 +89,7 @@ bool UavBoard::start(std::string& error) {
   if (st) st = executor_.add(task.rows());
   if (st && cfg.common.ros2.enabled) {
     if (!ros2_.emplace(task).start(cfg.common.dds_domain, cfg.common.ros2,
-                                   uc.schedule.telemetry.period, error))
+                                   uc.schedule.telemetry.period, cfg.common.dds_security, error))
       return false;
     st = executor_.add(platform::row(*ros2_, uc.schedule.telemetry));
   }

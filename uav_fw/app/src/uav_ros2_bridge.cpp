@@ -6,6 +6,7 @@
 
 #include "colag/hal/ros2/pose_writers.hpp"
 #include "colag/hal/ros2/ros2_names.hpp"
+#include "colag/platform/dds/dds_security.hpp"
 #include "ros2_msgs.h"
 
 namespace colag::uav {
@@ -28,7 +29,8 @@ UavRos2Bridge::~UavRos2Bridge() {
 }
 
 bool UavRos2Bridge::start(std::uint32_t domain, const board::Ros2Config& config,
-                          Duration step_period, std::string& error) {
+                          Duration step_period, const platform::DdsSecurityConfig& security,
+                          std::string& error) {
   ns_ = config.ns.empty() ? "uav" : config.ns;
   status_period_ = Duration(static_cast<Duration::rep>(std::llround(config.status_period_s * 1e9)));
   // A full sweep of the map view every map period, but never more than kMaxRowsPerStep rows a
@@ -39,8 +41,13 @@ bool UavRos2Bridge::start(std::uint32_t domain, const board::Ros2Config& config,
   rows_per_step_ = std::clamp(static_cast<int>(std::ceil(kWorldGrid3d.layer().cells_y() / steps)),
                               1, kMaxRowsPerStep);
   odom_ = std::make_unique<hal::ros2::OdometryMessage>(hal::ros2::base_link(ns_));
+  platform::dds::ParticipantQos qos;
+  if (Status s = qos.init(security); !s) {
+    error = std::string("ROS 2 telemetry: ") + s.message();
+    return false;
+  }
   hal::ros2::PoseWriters pose;
-  if (!pose.open(dds_, domain, ns_, error)) return false;
+  if (!pose.open(dds_, domain, qos.get(), ns_, error)) return false;
   odom_w_ = pose.odom;
   tf_w_ = pose.tf;
   using hal::ros2::ros2_dds_topic;

@@ -65,7 +65,8 @@ bool UgvBoard::start(std::string& error) {
   Status st = executor_.add(platform::row(*pump_, cfg.nav.schedule.transport));
   if (st) st = executor_.add(task.rows());
   if (st && cfg.common.ros2.enabled) {
-    if (!ros2_.emplace(task).start(cfg.common.dds_domain, cfg.common.ros2, error)) {
+    if (!ros2_.emplace(task).start(cfg.common.dds_domain, cfg.common.ros2, cfg.common.dds_security,
+                                   error)) {
       (void)stop_motors();
       return false;
     }

@@ -6,6 +6,7 @@
 #include "colag/hal/dds/take_one.hpp"
 #include "colag/hal/ros2/pose_writers.hpp"
 #include "colag/hal/ros2/ros2_names.hpp"
+#include "colag/platform/dds/dds_security.hpp"
 #include "ros2_msgs.h"
 
 namespace colag::ugv {
@@ -30,13 +31,18 @@ UgvRos2Bridge::~UgvRos2Bridge() {
 }
 
 bool UgvRos2Bridge::start(std::uint32_t domain, const board::Ros2Config& config,
-                          std::string& error) {
+                          const platform::DdsSecurityConfig& security, std::string& error) {
   ns_ = config.ns.empty() ? "ugv" + std::to_string(task_.config().id) : config.ns;
   status_period_ = seconds(config.status_period_s);
   map_period_ = seconds(config.map_period_s);
   odom_ = std::make_unique<hal::ros2::OdometryMessage>(hal::ros2::base_link(ns_));
+  platform::dds::ParticipantQos qos;
+  if (Status s = qos.init(security); !s) {
+    error = std::string("ROS 2 telemetry: ") + s.message();
+    return false;
+  }
   hal::ros2::PoseWriters pose;
-  if (!pose.open(dds_, domain, ns_, error)) return false;
+  if (!pose.open(dds_, domain, qos.get(), ns_, error)) return false;
   odom_w_ = pose.odom;
   tf_w_ = pose.tf;
   using hal::ros2::ros2_dds_topic;
@@ -51,24 +57,30 @@ bool UgvRos2Bridge::start(std::uint32_t domain, const board::Ros2Config& config,
   if (config.commands) {
     goal_r_ = dds_.reader(ros2_dds_topic(ns_, "goal_pose"),
                           geometry_msgs_msg_dds__PoseStamped__desc, hal::dds::kDefaultQos);
+    command_r_ = dds_.reader(ros2_dds_topic(ns_, "command"), colag_msgs_msg_dds__UgvCommand__desc,
+                             hal::dds::kDefaultQos);
   }
   if (status_w_ <= 0 || plan_w_ <= 0 || prediction_w_ <= 0 || map_w_ <= 0 ||
-      (config.commands && goal_r_ <= 0)) {
+      (config.commands && (goal_r_ <= 0 || command_r_ <= 0))) {
     error = "ROS 2 telemetry: " + dds_.last_error();
     return false;
   }
-  mailbox_.start([this](const Snapshot& s) { publish(s); }, [this] { take_goals(); });
+  mailbox_.start([this](const Snapshot& s) { publish(s); }, [this] { take_inputs(); });
   return true;
 }
 
-// The task's thread: goals in, a copy of the state out. Nothing here allocates or waits.
+// The task's thread: goals and commands in, a copy of the state out. Nothing here allocates or
+// waits.
 void UgvRos2Bridge::step(TimePoint now) {
-  if (std::unique_lock<std::mutex> lock(goal_mutex_, std::try_to_lock); lock.owns_lock()) {
+  if (std::unique_lock<std::mutex> lock(input_mutex_, std::try_to_lock); lock.owns_lock()) {
     if (goal_) {
       last_goal_ = task_.request_goal(*goal_);
       if (last_goal_ != GoalResult::kAccepted) goals_refused_.fetch_add(1);
       goal_.reset();
     }
+    Command c;
+    while (commands_.pop_front(c))
+      answer(c, task_.request_command(c.command));
   }
   const bool offered = mailbox_.offer([&](Snapshot& s) {
     s.status = task_.last_status();
@@ -84,19 +96,38 @@ void UgvRos2Bridge::step(TimePoint now) {
       const std::span<const CellState> cells = task_.map().cells();
       std::copy(cells.begin(), cells.end(), s.cells.begin());
     }
-    if (std::unique_lock<std::mutex> g(goal_mutex_, std::try_to_lock); g.owns_lock()) {
+    if (std::unique_lock<std::mutex> g(input_mutex_, std::try_to_lock); g.owns_lock()) {
       s.goals = goals_taken_;
       s.last_goal = last_goal_;
+      s.commands = commands_taken_;
+      s.last_id = last_command_.id;
+      s.last_command = last_command_.command;
+      s.last_command_result = last_command_result_;
     }
   });
   if (!offered) skipped_.fetch_add(1);
 }
 
-void UgvRos2Bridge::take_goals() {
+void UgvRos2Bridge::answer(const Command& c, CommandResult r) {
+  last_command_ = c;
+  last_command_result_ = r;
+  if (r != CommandResult::kAccepted) commands_refused_.fetch_add(1);
+}
+
+void UgvRos2Bridge::take_inputs() {
   if (goal_r_ <= 0) return;
+  while (hal::dds::take_one<colag_msgs_msg_dds__UgvCommand_>(
+      command_r_, [&](const colag_msgs_msg_dds__UgvCommand_& m) {
+        const std::lock_guard<std::mutex> lock(input_mutex_);
+        ++commands_taken_;
+        commands_received_.fetch_add(1);
+        const Command c{m.id, m.command};
+        if (!commands_.try_push(c)) answer(c, CommandResult::kBusy);
+      })) {
+  }
   while (hal::dds::take_one<geometry_msgs_msg_dds__PoseStamped_>(
       goal_r_, [&](const geometry_msgs_msg_dds__PoseStamped_& p) {
-        const std::lock_guard<std::mutex> lock(goal_mutex_);
+        const std::lock_guard<std::mutex> lock(input_mutex_);
         ++goals_taken_;
         goals_.fetch_add(1);
         const bool in_map = p.header.frame_id != nullptr &&
@@ -130,6 +161,9 @@ void UgvRos2Bridge::publish(const Snapshot& s) {
   if (s.detail) {
     status_.set(s.status);
     status_.set_goals(s.goals, static_cast<std::uint8_t>(s.last_goal), to_string(s.last_goal));
+    status_.set_commands(s.commands, s.last_id, s.last_command,
+                         static_cast<std::uint8_t>(s.last_command_result),
+                         to_string(s.last_command_result));
     write(status_w_, &status_.sample());
     plan_.clear(s.status.stamp);
     for (const TrajectorySample& p : s.trajectory.samples())
@@ -150,8 +184,8 @@ void UgvRos2Bridge::publish(const Snapshot& s) {
 }
 
 UgvRos2Counters UgvRos2Bridge::counters() const {
-  return {published_.load(), write_errors_.load(), skipped_.load(), goals_.load(),
-          goals_refused_.load()};
+  return {published_.load(),     write_errors_.load(),      skipped_.load(),         goals_.load(),
+          goals_refused_.load(), commands_received_.load(), commands_refused_.load()};
 }
 
 }  // namespace colag::ugv

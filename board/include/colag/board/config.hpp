@@ -23,7 +23,7 @@ struct Ros2Config {
   std::string ns;                // `namespace`: "" = the robot's default (ugv<id>, uav)
   double status_period_s = 0.5;  // status, plan, prediction; odometry and /tf at the loop's rate
   double map_period_s = 1.0;     // the occupancy grid
-  bool commands = true;          // a UGV takes goals on <ns>/goal_pose
+  bool commands = true;          // a UGV takes goals (<ns>/goal_pose) and <ns>/command
 };
 
 // The sections every robot's file has.
@@ -46,6 +46,15 @@ struct ConfigSchema {
 // `name`); an empty document is an empty mapping. False with `error` set on failure.
 bool load_document(const std::string& name, const std::string* text, YAML::Node& doc,
                    std::string& error);
+// A DDS Security section (`sec`, at `where`, e.g. "dds.security"): the six files, relative to
+// the file being read, all or none, each readable.
+void read_dds_security(Reader& r, const YAML::Node& sec, const std::string& where,
+                       platform::DdsSecurityConfig& s);
+// The file scripts/security/make-pki writes beside each identity (`<who>/security.yaml`, a
+// `security:` section), for the tools that join a secured fleet (colag_record --security
+// pki/operator/security.yaml). False with `error` ("FILE: security.key: problem").
+bool read_security_file(const std::string& file, platform::DdsSecurityConfig& out,
+                        std::string& error);
 // Checks the top-level sections (the common ones and `robot_sections`) and reads dds, realtime.
 void read_common(Reader& r, const YAML::Node& doc, const std::vector<std::string>& robot_sections,
                  CommonBoardConfig& out);

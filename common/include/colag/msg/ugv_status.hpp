@@ -18,10 +18,12 @@ enum class UgvMode : std::uint8_t {
   kBlocked = 6,  // stood still too long for `blocked_reason`: stopped asking for support, retries
   kWaitingForRobot = 7,  // stopped: another UGV predicted closer than the robot stop time
   kUavUnavailable = 8,   // stopped: the UAV says its flight controller does not fly the mission
+  kPaused = 9,           // stopped by its operator (a `pause` command) until `resume`
+  kAborted = 10,  // its mission cancelled by its operator: stopped until a new goal or `return`
 };
 template <>
 struct EnumRange<UgvMode> {
-  static constexpr UgvMode kLast = UgvMode::kUavUnavailable;
+  static constexpr UgvMode kLast = UgvMode::kAborted;
 };
 
 // Its name in telemetry (ROS 2 status, logs).
@@ -45,6 +47,10 @@ inline const char* to_string(UgvMode m) {
       return "waiting_for_robot";
     case UgvMode::kUavUnavailable:
       return "uav_unavailable";
+    case UgvMode::kPaused:
+      return "paused";
+    case UgvMode::kAborted:
+      return "aborted";
   }
   return "unknown";
 }

@@ -75,6 +75,39 @@ inline const char* to_string(GoalResult r) {
   return "refused";
 }
 
+// An operator's command at run time (request_command; ROS 2 `<ns>/command`).
+enum class UgvCommand : std::uint8_t {
+  kPause = 1,          // stop where it is (still estimating, mapping) until kResume
+  kResume = 2,         // drive on after kPause
+  kAbort = 3,          // cancel the mission: stop until a new goal or kReturnToStart
+  kReturnToStart = 4,  // drive back to where it was first localised
+};
+enum class CommandResult : std::uint8_t {
+  kAccepted = 0,
+  kUnknown = 1,       // not a UgvCommand
+  kNotPaused = 2,     // resume without a pause
+  kNoStart = 3,       // return: it has not been localised yet, so it does not know its start
+  kStartRefused = 4,  // return: its start is now outside its map or inside an obstacle
+  kBusy = 5,          // (from the ROS 2 bridge) more commands at once than it queues
+};
+inline const char* to_string(CommandResult r) {
+  switch (r) {
+    case CommandResult::kAccepted:
+      return "accepted";
+    case CommandResult::kUnknown:
+      return "refused: unknown command";
+    case CommandResult::kNotPaused:
+      return "refused: not paused";
+    case CommandResult::kNoStart:
+      return "refused: not localised yet, its start is unknown";
+    case CommandResult::kStartRefused:
+      return "refused: its start is outside the map or in an obstacle";
+    case CommandResult::kBusy:
+      return "refused: too many commands at once";
+  }
+  return "refused";
+}
+
 class UgvNavTask {
  public:
   UgvNavTask(const UgvNavConfig& config, platform::Transport& transport,
@@ -113,8 +146,15 @@ class UgvNavTask {
   // Drives to `goal` (world frame) from now on, unless it is refused: not finite, outside the
   // map, or on a cell the map knows occupied (an unknown cell is accepted: the UAV will map it).
   // An arrived UGV drives again. Call between steps, on the task's thread.
+  // A new goal also ends an abort (a pause holds until kResume).
   GoalResult request_goal(const Vec2& goal);
   const Vec2& goal() const { return goal_; }
+  // Pause, resume, abort, return to start (`command`: a UgvCommand's value, checked here). While
+  // paused or aborted it stands (kPaused, kAborted: its waiting counts them as `operator`) and
+  // asks the UAV for nothing. Call between steps, on the task's thread.
+  CommandResult request_command(std::uint8_t command);
+  bool paused() const { return paused_; }
+  bool aborted() const { return aborted_; }
   const msg::UgvStatus& last_status() const { return last_status_; }  // as last published
 
  private:
@@ -202,6 +242,9 @@ class UgvNavTask {
   bool awaiting_fix_ = false;  // at the goal by its estimate, not sure enough to have arrived
   bool stopped_for_robot_ = false;
   bool arrived_ = false;
+  bool paused_ = false;        // by its operator, until resume
+  bool aborted_ = false;       // by its operator, until a new goal
+  std::optional<Vec2> start_;  // where it was first localised (return to start)
   bool replan_requested_ = true;
   bool no_path_ = false;
   std::uint64_t plan_blocked_seen_ = 0;

@@ -1,10 +1,11 @@
 #pragma once
 // Why a UGV stands still before its goal, in the parts a user asks about: waiting for the UAV's
 // support, for another UGV, for a path, at start-up (no fleet time, no relative pose, no plan
-// yet), in a fault, or manoeuvring (turning on the spot, pulling away: driving, but slower than
-// kStillSpeed). Every control period its wheels turn slower than kStillSpeed before its goal goes
-// into exactly one part, so the parts sum to its waiting time, and the ground truth's "speed
-// below kStillSpeed" agrees with it to within a control period per stop (the odometry's delay).
+// yet), in a fault, held by its operator (paused, aborted), or manoeuvring (turning on the spot,
+// pulling away: driving, but slower than kStillSpeed). Every control period its wheels turn slower
+// than kStillSpeed before its goal goes into exactly one part, so the parts sum to its waiting
+// time, and the ground truth's "speed below kStillSpeed" agrees with it to within a control period
+// per stop (the odometry's delay).
 #include <array>
 #include <cstdint>
 
@@ -13,8 +14,16 @@
 
 namespace colag::ugv {
 
-enum class WaitPart : std::uint8_t { kSupport, kOtherUgv, kNoPath, kStartup, kFault, kManoeuvre };
-inline constexpr std::size_t kWaitParts = 6;
+enum class WaitPart : std::uint8_t {
+  kSupport,
+  kOtherUgv,
+  kNoPath,
+  kStartup,
+  kFault,
+  kManoeuvre,
+  kOperator,
+};
+inline constexpr std::size_t kWaitParts = 7;
 inline constexpr double kStillSpeed_mps = 0.05;
 
 inline const char* to_string(WaitPart p) {
@@ -31,6 +40,8 @@ inline const char* to_string(WaitPart p) {
       return "fault";
     case WaitPart::kManoeuvre:
       return "manoeuvre";
+    case WaitPart::kOperator:
+      return "operator";
   }
   return "unknown";
 }
@@ -50,6 +61,9 @@ constexpr WaitPart wait_part(msg::UgvMode mode, msg::BlockedReason why, bool pla
       return planned ? WaitPart::kNoPath : WaitPart::kStartup;
     case msg::UgvMode::kFault:
       return WaitPart::kFault;
+    case msg::UgvMode::kPaused:
+    case msg::UgvMode::kAborted:
+      return WaitPart::kOperator;
     case msg::UgvMode::kBlocked:
       switch (why) {
         case msg::BlockedReason::kNotCleared:

@@ -24,8 +24,9 @@ class DeviceParticipant {
   DeviceParticipant(const DeviceParticipant&) = delete;
   DeviceParticipant& operator=(const DeviceParticipant&) = delete;
 
-  Status init(std::uint32_t domain) {
-    participant_ = dds_create_participant(domain, nullptr, nullptr);
+  // `qos`: the participant's (e.g. DDS Security's properties); null: Cyclone's defaults.
+  Status init(std::uint32_t domain, const dds_qos_t* qos = nullptr) {
+    participant_ = dds_create_participant(domain, qos, nullptr);
     return participant_ > 0 ? Status::ok() : fail(participant_, "participant");
   }
   // A best-effort, volatile endpoint on `topic` (keep-last `depth`); 0 with last_error() set.

@@ -60,6 +60,10 @@ class UgvStatusMessage : NoCopy {
   void set(const msg::UgvStatus& s);
   // The goals received on <ns>/goal_pose and the answer to the last (`text`: a literal).
   void set_goals(std::uint32_t received, std::uint8_t last_result, const char* text);
+  // The commands received on <ns>/command and the answer to the last: its id, its
+  // value, the result and its text (a literal).
+  void set_commands(std::uint32_t received, std::uint32_t last_id, std::uint8_t last,
+                    std::uint8_t last_result, const char* text);
   const colag_msgs_msg_dds__UgvStatus_& sample() const { return msg_; }
 
  private:

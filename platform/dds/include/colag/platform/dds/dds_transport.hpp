@@ -91,7 +91,6 @@ class DdsTransport final : public Transport {
   void dispatch(msg::Topic topic, const void* sample, TimePoint now);
   dds_qos_t* make_qos(const msg::TopicInfo& info) const;
   Status fail(dds_return_t rc, const char* what);
-  Status security_qos(dds_qos_t* qos) const;
 
   DdsConfig config_;
   dds_entity_t participant_ = 0;

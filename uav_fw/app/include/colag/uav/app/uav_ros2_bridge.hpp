@@ -34,8 +34,10 @@ class UavRos2Bridge final : public platform::Task {
   UavRos2Bridge(const UavRos2Bridge&) = delete;
   UavRos2Bridge& operator=(const UavRos2Bridge&) = delete;
 
+  // The writers on `domain` (secured as the robot's own participant when `security` is on), and
+  // the thread. False with `error` set.
   bool start(std::uint32_t domain, const board::Ros2Config& config, Duration step_period,
-             std::string& error);
+             const platform::DdsSecurityConfig& security, std::string& error);
   const char* name() const override { return "uav_ros2"; }
   void step(TimePoint now) override;
   UavRos2Counters counters() const;

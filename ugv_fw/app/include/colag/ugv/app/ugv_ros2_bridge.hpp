@@ -5,12 +5,14 @@
 //   <ns>/status (colag_msgs/UgvStatus), <ns>/plan (nav_msgs/Path), <ns>/prediction
 //   (visualization_msgs/MarkerArray) every status period; <ns>/map (nav_msgs/OccupancyGrid,
 //   transient local) every map period. In: <ns>/goal_pose (geometry_msgs/PoseStamped, frame
-//   `map`, as RViz2's "2D Goal Pose" sends it), validated by the task; the answer is in the status.
+//   `map`, as RViz2's "2D Goal Pose" sends it), validated by the task; <ns>/command
+//   (colag_msgs/UgvCommand: pause, resume, abort, return to start), in the order sent. The
+//   answers (and the last command's id) are in the status.
 //
 // Two halves: step() runs in the UGV's executor table on the task's thread (it copies the task's
 // state into a mailbox and hands it the goals waiting; no allocation, never blocks: a busy
 // mailbox skips the period); a thread of its own turns the copy into ROS 2 messages and writes
-// them (Cyclone allocates there, not on the task's thread), and takes the goals.
+// them (Cyclone allocates there, not on the task's thread), and takes the goals and commands.
 #include <atomic>
 #include <cstdint>
 #include <memory>
@@ -21,6 +23,7 @@
 
 #include "colag/board/config.hpp"
 #include "colag/board/snapshot_mailbox.hpp"
+#include "colag/common/ring_buffer.hpp"
 #include "colag/hal/dds/device_participant.hpp"
 #include "colag/hal/ros2/ros2_messages.hpp"
 #include "colag/platform/task.hpp"
@@ -34,6 +37,8 @@ struct UgvRos2Counters {
   std::uint64_t skipped = 0;  // periods the mailbox was busy
   std::uint64_t goals = 0;    // goals received
   std::uint64_t goals_refused = 0;
+  std::uint64_t commands = 0;  // commands received
+  std::uint64_t commands_refused = 0;
 };
 
 class UgvRos2Bridge final : public platform::Task {
@@ -43,8 +48,10 @@ class UgvRos2Bridge final : public platform::Task {
   UgvRos2Bridge(const UgvRos2Bridge&) = delete;
   UgvRos2Bridge& operator=(const UgvRos2Bridge&) = delete;
 
-  // The writers and the reader on `domain`, and the thread. False with `error` set.
-  bool start(std::uint32_t domain, const board::Ros2Config& config, std::string& error);
+  // The writers and the readers on `domain` (secured as the robot's own participant when
+  // `security` is on), and the thread. False with `error` set.
+  bool start(std::uint32_t domain, const board::Ros2Config& config,
+             const platform::DdsSecurityConfig& security, std::string& error);
   const char* name() const override { return "ugv_ros2"; }
   void step(TimePoint now) override;
   UgvRos2Counters counters() const;
@@ -59,25 +66,38 @@ class UgvRos2Bridge final : public platform::Task {
     std::vector<CellState> cells;  // the map store's cells (MapStore::cells)
     std::uint32_t goals = 0;       // goals taken so far, and the answer to the last
     GoalResult last_goal = GoalResult::kAccepted;
+    std::uint32_t commands = 0;  // commands taken so far, and the last one with its answer
+    std::uint32_t last_id = 0;
+    std::uint8_t last_command = 0;
+    CommandResult last_command_result = CommandResult::kAccepted;
+  };
+  struct Command {
+    std::uint32_t id = 0;
+    std::uint8_t command = 0;
   };
   void publish(const Snapshot& s);
-  void take_goals();
+  void take_inputs();
+  void answer(const Command& c, CommandResult r);  // under input_mutex_
 
   UgvNavTask& task_;
   std::string ns_;
   Duration status_period_{}, map_period_{};
   TimePoint next_status_{}, next_map_{};
 
-  // Goals: the thread puts, step() takes (validated by the task).
-  std::mutex goal_mutex_;
+  // Goals and commands: the thread puts, step() takes (validated by the task).
+  std::mutex input_mutex_;
   std::optional<Vec2> goal_;
   std::uint32_t goals_taken_ = 0;
   GoalResult last_goal_ = GoalResult::kAccepted;
+  RingBuffer<Command, 8> commands_;
+  std::uint32_t commands_taken_ = 0;
+  Command last_command_;
+  CommandResult last_command_result_ = CommandResult::kAccepted;
 
   // The thread's own: the DDS entities and the messages (filled from a copy of the mailbox).
   hal::dds::DeviceParticipant dds_;
   dds_entity_t odom_w_ = 0, tf_w_ = 0, status_w_ = 0, plan_w_ = 0, prediction_w_ = 0, map_w_ = 0,
-               goal_r_ = 0;
+               goal_r_ = 0, command_r_ = 0;
   std::unique_ptr<hal::ros2::OdometryMessage> odom_;
   hal::ros2::TfMessage tf_{1};
   hal::ros2::UgvStatusMessage status_;
@@ -86,7 +106,7 @@ class UgvRos2Bridge final : public platform::Task {
   hal::ros2::GridMessage map_{kWorldGrid2d};
   board::SnapshotMailbox<Snapshot> mailbox_;  // last: its thread stops before the rest goes
   std::atomic<std::uint64_t> published_{0}, write_errors_{0}, skipped_{0}, goals_{0},
-      goals_refused_{0};
+      goals_refused_{0}, commands_received_{0}, commands_refused_{0};
 };
 
 }  // namespace colag::ugv
