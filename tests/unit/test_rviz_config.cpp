@@ -5,24 +5,46 @@
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
-#include <regex>
+#include <cctype>
+#include <initializer_list>
 #include <string>
+#include <string_view>
 
 namespace {
+
+// "/ugv<digits>/" followed by `rest`, for one of `rests` (no std::regex: GCC 12 under ASan warns
+// inside it).
+bool ugv_topic(std::string_view topic, std::initializer_list<std::string_view> rests) {
+  if (!topic.starts_with("/ugv")) return false;
+  topic.remove_prefix(4);
+  std::size_t digits = 0;
+  while (digits < topic.size() && std::isdigit(static_cast<unsigned char>(topic[digits])) != 0)
+    ++digits;
+  if (digits == 0 || digits == topic.size() || topic[digits] != '/') return false;
+  topic.remove_prefix(digits + 1);
+  for (std::string_view r : rests)
+    if (topic == r) return true;
+  return false;
+}
+
+bool uav_topic(std::string_view topic) {
+  for (std::string_view t :
+       {"/uav/odom", "/uav/map", "/uav/support_plan", "/uav/support_plan/markers"})
+    if (topic == t) return true;
+  return false;
+}
 
 TEST(RvizConfig, ShowsTheTelemetrysTopicsWithMatchingQosAndSendsGoalsWhereUgvsListen) {
   const YAML::Node doc = YAML::LoadFile(std::string(COLAG_CONFIG_DIR) + "/colag.rviz");
   const YAML::Node vm = doc["Visualization Manager"];
   ASSERT_TRUE(vm);
   EXPECT_EQ(vm["Global Options"]["Fixed Frame"].as<std::string>(), "map");
-  const std::regex telemetry(
-      "/ugv[0-9]+/(odom|plan|prediction|map)|/uav/"
-      "(odom|map|support_plan|support_plan/markers)");
   int shown = 0;
   for (const YAML::Node& d : vm["Displays"]) {
     if (!d["Topic"]) continue;
     const std::string topic = d["Topic"]["Value"].as<std::string>();
-    EXPECT_TRUE(std::regex_match(topic, telemetry)) << topic << ": not published by the fleet";
+    EXPECT_TRUE(ugv_topic(topic, {"odom", "plan", "prediction", "map"}) || uav_topic(topic))
+        << topic << ": not published by the fleet";
     const bool latched = topic.ends_with("/map") || topic.find("support_plan") != std::string::npos;
     const bool sensor = topic.ends_with("/odom");
     EXPECT_EQ(d["Topic"]["Durability Policy"].as<std::string>(),
@@ -38,7 +60,7 @@ TEST(RvizConfig, ShowsTheTelemetrysTopicsWithMatchingQosAndSendsGoalsWhereUgvsLi
   for (const YAML::Node& t : vm["Tools"]) {
     if (t["Class"].as<std::string>() != "rviz_default_plugins/SetGoal") continue;
     const std::string topic = t["Topic"]["Value"].as<std::string>();
-    EXPECT_TRUE(std::regex_match(topic, std::regex("/ugv[0-9]+/goal_pose"))) << topic;
+    EXPECT_TRUE(ugv_topic(topic, {"goal_pose"})) << topic;
     EXPECT_EQ(t["Topic"]["Reliability Policy"].as<std::string>(), "Reliable") << topic;
     ++goal_tools;
   }
