@@ -97,9 +97,9 @@ void UgvRos2Bridge::step(TimePoint now) {
       std::copy(cells.begin(), cells.end(), s.cells.begin());
     }
     if (std::unique_lock<std::mutex> g(input_mutex_, std::try_to_lock); g.owns_lock()) {
-      s.goals = goals_taken_;
+      s.goals = static_cast<std::uint32_t>(goals_.load());
       s.last_goal = last_goal_;
-      s.commands = commands_taken_;
+      s.commands = static_cast<std::uint32_t>(commands_received_.load());
       s.last_id = last_command_.id;
       s.last_command = last_command_.command;
       s.last_command_result = last_command_result_;
@@ -119,7 +119,6 @@ void UgvRos2Bridge::take_inputs() {
   while (hal::dds::take_one<colag_msgs_msg_dds__UgvCommand_>(
       command_r_, [&](const colag_msgs_msg_dds__UgvCommand_& m) {
         const std::lock_guard<std::mutex> lock(input_mutex_);
-        ++commands_taken_;
         commands_received_.fetch_add(1);
         const Command c{m.id, m.command};
         if (!commands_.try_push(c)) answer(c, CommandResult::kBusy);
@@ -128,7 +127,6 @@ void UgvRos2Bridge::take_inputs() {
   while (hal::dds::take_one<geometry_msgs_msg_dds__PoseStamped_>(
       goal_r_, [&](const geometry_msgs_msg_dds__PoseStamped_& p) {
         const std::lock_guard<std::mutex> lock(input_mutex_);
-        ++goals_taken_;
         goals_.fetch_add(1);
         const bool in_map = p.header.frame_id != nullptr &&
                             std::string_view(p.header.frame_id) == hal::ros2::kMapFrame;

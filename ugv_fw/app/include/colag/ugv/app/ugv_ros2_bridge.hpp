@@ -87,10 +87,8 @@ class UgvRos2Bridge final : public platform::Task {
   // Goals and commands: the thread puts, step() takes (validated by the task).
   std::mutex input_mutex_;
   std::optional<Vec2> goal_;
-  std::uint32_t goals_taken_ = 0;
   GoalResult last_goal_ = GoalResult::kAccepted;
   RingBuffer<Command, 8> commands_;
-  std::uint32_t commands_taken_ = 0;
   Command last_command_;
   CommandResult last_command_result_ = CommandResult::kAccepted;
 
