@@ -23,6 +23,7 @@
 
 #include "colag/board/config.hpp"
 #include "colag/board/snapshot_mailbox.hpp"
+#include "colag/common/limits.hpp"
 #include "colag/common/ring_buffer.hpp"
 #include "colag/hal/dds/device_participant.hpp"
 #include "colag/hal/ros2/ros2_messages.hpp"
@@ -88,7 +89,7 @@ class UgvRos2Bridge final : public platform::Task {
   std::mutex input_mutex_;
   std::optional<Vec2> goal_;
   GoalResult last_goal_ = GoalResult::kAccepted;
-  RingBuffer<Command, 8> commands_;
+  RingBuffer<Command, limits::kRos2CommandQueue> commands_;
   Command last_command_;
   CommandResult last_command_result_ = CommandResult::kAccepted;
 
