@@ -5,9 +5,15 @@
 
 namespace colag::platform {
 
+static_assert(LoopbackTransport::kParticipants <= 64, "participants are bits of a uint64");
+
 LoopbackTransport::LoopbackTransport(std::uint64_t seed) : rng_(seed) {
   for (std::size_t i = slots_.size(); i-- > 0;)
     (void)free_slots_.push_back(static_cast<std::uint16_t>(i));
+  for (std::size_t p = 0; p < ports_.size(); ++p) {
+    ports_[p].net = this;
+    ports_[p].participant = static_cast<std::uint8_t>(p);
+  }
 }
 
 void LoopbackTransport::set_faults(const LinkFaults& faults) {
@@ -19,8 +25,13 @@ void LoopbackTransport::set_faults(msg::Topic topic, const LinkFaults& faults) {
 }
 
 Status LoopbackTransport::subscribe(msg::Topic topic, RobotId key, SampleSink& sink) {
+  return subscribe_for(kObserver, topic, key, sink);
+}
+
+Status LoopbackTransport::subscribe_for(std::uint8_t participant, msg::Topic topic, RobotId key,
+                                        SampleSink& sink) {
   if (index(topic) >= msg::kTopicCount) return {Errc::kInvalidArgument, "unknown topic"};
-  if (!subscriptions_.push_back({topic, key, &sink})) {
+  if (!subscriptions_.push_back({topic, key, &sink, participant})) {
     return {Errc::kCapacityExceeded, "loopback: too many subscriptions"};
   }
   return Status::ok();
@@ -46,6 +57,11 @@ bool LoopbackTransport::schedule(std::uint16_t subscription, std::uint16_t slot,
 }
 
 Status LoopbackTransport::publish(msg::Topic topic, const void* sample) {
+  return publish_from(kObserver, topic, sample);
+}
+
+Status LoopbackTransport::publish_from(std::uint8_t participant, msg::Topic topic,
+                                       const void* sample) {
   if (index(topic) >= msg::kTopicCount || sample == nullptr) {
     ++total_.rejected;
     return {Errc::kInvalidArgument, "loopback: bad topic or null sample"};
@@ -53,6 +69,25 @@ Status LoopbackTransport::publish(msg::Topic topic, const void* sample) {
   count(topic, &TransportStats::published);
   const RobotId key = msg::message_key(topic, sample);
   const LinkFaults& faults = faults_[index(topic)];
+  const bool per_ugv = msg::topic_info(topic).delivery == msg::Delivery::kPerUgv;
+
+  // What the network carries to each participant (DDS: partitions match, keys do not filter).
+  const std::size_t bytes = msg::message_wire_bytes(topic, sample);
+  if (participant != kObserver) {
+    ++traffic_[participant].samples_out;
+    traffic_[participant].bytes_out += bytes;
+  }
+  std::uint64_t reached = 0;
+  for (const Subscription& sub : subscriptions_) {
+    if (sub.topic != topic || sub.participant == kObserver || sub.participant == participant)
+      continue;
+    if (per_ugv && sub.key != kAnyRobot && sub.key != key) continue;
+    const std::uint64_t bit = std::uint64_t{1} << sub.participant;
+    if ((reached & bit) != 0) continue;
+    reached |= bit;
+    ++traffic_[sub.participant].samples_in;
+    traffic_[sub.participant].bytes_in += bytes;
+  }
 
   if (free_slots_.empty()) {
     count(topic, &TransportStats::overflowed);

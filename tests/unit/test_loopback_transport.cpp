@@ -232,3 +232,51 @@ TEST_F(LoopbackTest, LaneOutboxKeepsSamplesUntilFlushedThenPublishesThemInOrder)
   EXPECT_EQ(outbox.stats().overflowed, 1u);
   EXPECT_EQ(outbox.stats().rejected, 1u);
 }
+
+// Each robot's port: the network counts what it carries to each one as DDS would, with the
+// per-UGV topics in their UGV's partition and the fleet topics to every reader.
+TEST_F(LoopbackTest, EachParticipantReceivesItsOwnAndTheFleetsTopicsAndTheBytesAreCounted) {
+  constexpr std::size_t kUav = limits::kMaxUgvs;
+  QueueReader<msg::MapPatch, 8> patches0, patches1;
+  QueueReader<msg::UavOdometry, 8> odometry0;
+  QueueReader<msg::UavOdometry, 8> odometry1_of_uav5;  // a key filter: no delivery, same bytes
+  QueueReader<msg::UgvStatus, 8> statuses_at_uav;
+  QueueReader<msg::MapPatch, 8> observer;  // the simulator's instruments: not a robot
+  ASSERT_TRUE(patches0.attach(bus->port(0), 0));
+  ASSERT_TRUE(odometry0.attach(bus->port(0)));
+  ASSERT_TRUE(patches1.attach(bus->port(1), 1));
+  ASSERT_TRUE(odometry1_of_uav5.attach(bus->port(1), 5));
+  ASSERT_TRUE(statuses_at_uav.attach(bus->port(kUav)));
+  ASSERT_TRUE(observer.attach(*bus));
+
+  msg::MapPatch to0, to1;
+  to0.ugv_id = 0;
+  to0.data.count = 100;
+  to1.ugv_id = 1;
+  to1.data.count = 7;
+  msg::UavOdometry odo;
+  Transport& uav = bus->port(kUav);
+  ASSERT_TRUE(uav.publish(to0));
+  ASSERT_TRUE(uav.publish(to1));
+  ASSERT_TRUE(uav.publish(odo));
+  ASSERT_TRUE(bus->port(0).publish(status(0, 1)));
+  bus->poll(TimePoint{1ms});
+
+  EXPECT_EQ(patches0.size(), 1u);
+  EXPECT_EQ(patches1.size(), 1u);
+  EXPECT_EQ(odometry0.size(), 1u);
+  EXPECT_EQ(odometry1_of_uav5.size(), 0u);
+  EXPECT_EQ(statuses_at_uav.size(), 1u);
+  EXPECT_EQ(observer.size(), 2u);
+
+  const std::size_t patch0 = msg::wire_bytes(to0), patch1 = msg::wire_bytes(to1);
+  const std::size_t odometry = msg::wire_bytes(odo), st = msg::wire_bytes(status(0, 1));
+  EXPECT_EQ(patch0 - patch1, 93u);  // only the used bytes cross
+  EXPECT_EQ(bus->traffic(0).bytes_in, patch0 + odometry);
+  EXPECT_EQ(bus->traffic(0).samples_in, 2u);
+  EXPECT_EQ(bus->traffic(1).bytes_in, patch1 + odometry);
+  EXPECT_EQ(bus->traffic(kUav).bytes_in, st);
+  EXPECT_EQ(bus->traffic(kUav).bytes_out, patch0 + patch1 + odometry);
+  EXPECT_EQ(bus->traffic(0).bytes_out, st);
+  EXPECT_EQ(bus->traffic(2).bytes_in, 0u);  // nobody there
+}

@@ -416,16 +416,16 @@ TEST(UgvNavTask, RejectsAndCountsBadMessagesWithoutHarm) {
   garbage.stamp = rig.ex.now();
   garbage.width_cells = 3000;
   ASSERT_TRUE(rig.bus->publish(garbage));
-  msg::UgvStatus bad_status;
-  bad_status.stamp = rig.ex.now();
-  bad_status.ugv_id = 200;
-  ASSERT_TRUE(rig.bus->publish(bad_status));
-  msg::UgvStatus bad_velocity;  // a UGV right ahead whose velocity would sweep it away
-  bad_velocity.stamp = rig.ex.now();
+  msg::NearbyUgvs nearby;  // the UAV's list of the UGVs near it, with two bad entries
+  nearby.stamp = rig.ex.now();
+  nearby.ugv_id = 0;
+  nearby.ugvs.count = 2;
+  nearby.ugvs[0].ugv_id = 200;
+  msg::NearbyUgv& bad_velocity = nearby.ugvs[1];  // right ahead: its velocity would sweep it away
   bad_velocity.ugv_id = 3;
   bad_velocity.position_m[0] = 2.0;
   bad_velocity.velocity_mps = std::numeric_limits<double>::infinity();
-  ASSERT_TRUE(rig.bus->publish(bad_velocity));
+  ASSERT_TRUE(rig.bus->publish(nearby));
   rig.ex.run_until(rig.ex.now() + 200ms);
   EXPECT_EQ(rig.ugv->health().rpe_rejected, 2u);
   EXPECT_EQ(rig.ugv->health().patches_rejected, 1u);
@@ -480,16 +480,21 @@ TEST(UgvNavTask, AFutureStampedUavOdometrySampleLocksNothingOut) {
 TEST(UgvNavTask, ASilentUgvStaysAnObstacleThatGrowsUntilItIsHeardAgain) {
   Rig rig(Vec2(8.0, 0.0));
   rig.publish_map(-3.2, -3.2, 9.6, 6.4);
+  // The UAV relays UGV 1's status (heard just now), then goes silent.
   const auto other_status = [&] {
-    msg::UgvStatus s;
+    msg::NearbyUgvs m;
+    m.stamp = rig.ex.now();
+    m.ugv_id = 0;
+    m.radius_m = 12.0;
+    m.ugvs.count = 1;
+    msg::NearbyUgv& s = m.ugvs[0];
     s.stamp = rig.ex.now();
     s.ugv_id = 1;
     s.mode = msg::UgvMode::kDriving;
     s.position_m[0] = 5.0;  // 2 m beside the way to the goal
     s.position_m[1] = 2.0;
-    s.covariance[0] = s.covariance[4] = 1e-4;
-    s.covariance[8] = 1e-4;
-    ASSERT_TRUE(rig.bus->publish(s));
+    s.covariance_xy[0] = s.covariance_xy[2] = 1e-4;
+    ASSERT_TRUE(rig.bus->publish(m));
   };
   other_status();  // heard once, then silent
   ASSERT_TRUE(rig.run_until(
@@ -507,6 +512,40 @@ TEST(UgvNavTask, ASilentUgvStaysAnObstacleThatGrowsUntilItIsHeardAgain) {
   for (int i = 0; i < 300 && rig.ugv->mode() != msg::UgvMode::kArrived; ++i) {
     rig.ex.run_until(rig.ex.now() + 100ms);
     if (i % 5 == 0) other_status();  // and heard from every half second now
+  }
+  EXPECT_EQ(rig.ugv->mode(), msg::UgvMode::kArrived);
+}
+
+// The UAV's lists are complete within their radius: a UGV left out of a newer one is farther
+// and is forgotten at once, rather than lingering in the way as a silent one would.
+TEST(UgvNavTask, AUgvLeftOutOfTheUavsNewerListIsForgotten) {
+  Rig rig(Vec2(8.0, 0.0));
+  rig.publish_map(-3.2, -3.2, 9.6, 6.4);
+  const auto relay = [&](bool with_ugv1) {
+    msg::NearbyUgvs m;
+    m.stamp = rig.ex.now();
+    m.ugv_id = 0;
+    m.radius_m = 12.0;
+    if (with_ugv1) {
+      m.ugvs.count = 1;
+      msg::NearbyUgv& s = m.ugvs[0];
+      s.stamp = rig.ex.now();
+      s.ugv_id = 1;
+      s.mode = msg::UgvMode::kWaitingForSupport;
+      s.position_m[0] = 8.0;  // standing on its goal
+      s.covariance_xy[0] = s.covariance_xy[2] = 1e-4;
+    }
+    ASSERT_TRUE(rig.bus->publish(m));
+  };
+  for (int i = 0; i < 80; ++i) {
+    relay(true);
+    rig.ex.run_until(rig.ex.now() + 100ms);
+  }
+  EXPECT_NE(rig.ugv->mode(), msg::UgvMode::kArrived);
+  EXPECT_GT((rig.world->truth.p - Vec2(8.0, 0.0)).norm(), 0.6) << "it drove into the other UGV";
+  for (int i = 0; i < 300 && rig.ugv->mode() != msg::UgvMode::kArrived; ++i) {
+    relay(false);
+    rig.ex.run_until(rig.ex.now() + 100ms);
   }
   EXPECT_EQ(rig.ugv->mode(), msg::UgvMode::kArrived);
 }

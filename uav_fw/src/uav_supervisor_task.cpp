@@ -407,9 +407,22 @@ void UavSupervisorTask::publish_plan(TimePoint now, bool changed) {
   (void)transport_.publish(plan_);
 }
 
+void UavSupervisorTask::relay_nearby(TimePoint now) {
+  for (RobotId to = 0; to < limits::kMaxUgvs; ++to) {
+    const Ugv& u = ugvs_[to];
+    if (!u.known || now - u.heard > config_.status_timeout) continue;
+    fill_nearby(to, ugvs_, now, config_.nearby, nearby_);
+    nearby_.stamp = now;
+    nearby_.uav_id = config_.id;
+    ++nearby_.seq;
+    if (transport_.publish(nearby_)) ++health_.nearby_sent;
+  }
+}
+
 void UavSupervisorTask::scheduling_step(TimePoint now) {
   read_requests(now);
   read_statuses(now);
+  relay_nearby(now);
   StampCounters stamps = odometry_stamps_.counters();
   stamps += camera_stamps_.counters();
   for (std::size_t i = 0; i < limits::kMaxUgvs; ++i) {

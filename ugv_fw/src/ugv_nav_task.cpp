@@ -19,18 +19,17 @@ double sigma_major(const Mat2& cov) {
 // Faster than any UGV drives: a status claiming more is corrupt.
 constexpr double kMaxPlausibleSpeed_mps = 5.0;
 
-bool finite_status(const msg::UgvStatus& s) {
-  if (!std::isfinite(s.position_m[0]) || !std::isfinite(s.position_m[1])) return false;
+bool plausible(const msg::NearbyUgv& u) {
+  if (!std::isfinite(u.position_m[0]) || !std::isfinite(u.position_m[1])) return false;
   // The velocity moves the UGV's disc in the collision prediction: a bad one would hide it.
-  if (!std::isfinite(s.yaw_rad) || !(std::abs(s.velocity_mps) <= kMaxPlausibleSpeed_mps))
+  if (!std::isfinite(u.yaw_rad) || !(std::abs(u.velocity_mps) <= kMaxPlausibleSpeed_mps))
     return false;
-  for (double c : s.covariance) {
+  for (double c : u.covariance_xy) {
     if (!std::isfinite(c)) return false;
   }
-  return static_cast<unsigned>(s.mode) <=
-             static_cast<unsigned>(msg::EnumRange<msg::UgvMode>::kLast) &&
-         static_cast<unsigned>(s.blocked_reason) <=
-             static_cast<unsigned>(msg::EnumRange<msg::BlockedReason>::kLast);
+  return u.ugv_id < limits::kMaxUgvs && std::isfinite(u.silent_s) && u.silent_s >= 0.0 &&
+         static_cast<unsigned>(u.mode) <=
+             static_cast<unsigned>(msg::EnumRange<msg::UgvMode>::kLast);
 }
 
 }  // namespace
@@ -55,12 +54,12 @@ UgvNavTask::UgvNavTask(const UgvNavConfig& config, platform::Transport& transpor
       blocked_(config.blocked) {
   // Wheel samples are stamped by this board's clock (their order is the EKF's to check); the
   // UAV's odometry must increase (the history interpolates along it); relative poses may come
-  // late and out of order within the EKF's history; each UGV's statuses must increase.
+  // late and out of order within the EKF's history; the nearby-UGV lists must increase.
   wheel_stamps_ = StampGate(stamp_limits(false));
   uav_odometry_stamps_ = StampGate(stamp_limits(true));
   rpe_stamps_ = StampGate(stamp_limits(false));
   patch_stamps_ = StampGate(stamp_limits(false));
-  status_stamps_.fill(StampGate(stamp_limits(true)));
+  nearby_stamps_ = StampGate(stamp_limits(true));
 }
 
 Status UgvNavTask::init(TimePoint now) {
@@ -69,7 +68,7 @@ Status UgvNavTask::init(TimePoint now) {
   if (Status s = uav_odometry_in_.attach(transport_); !s) return s;
   if (Status s = rpe_in_.attach(transport_, config_.id); !s) return s;
   if (Status s = patches_in_.attach(transport_, config_.id); !s) return s;
-  if (Status s = statuses_in_.attach(transport_); !s) return s;
+  if (Status s = nearby_in_.attach(transport_, config_.id); !s) return s;
   if (Status s = fleet_.attach(transport_, config_.id); !s) return s;
   started_ = last_control_ = now;
   last_plan_ = kNever;
@@ -324,10 +323,9 @@ void UgvNavTask::planning_step(TimePoint now) {
 
 void UgvNavTask::sum_stamp_counters() {
   StampCounters sum;
-  for (const StampGate* g : {&wheel_stamps_, &uav_odometry_stamps_, &rpe_stamps_, &patch_stamps_})
+  for (const StampGate* g :
+       {&wheel_stamps_, &uav_odometry_stamps_, &rpe_stamps_, &patch_stamps_, &nearby_stamps_})
     sum += g->counters();
-  for (const StampGate& g : status_stamps_)
-    sum += g.counters();
   health_.stamps = sum;
 }
 
@@ -352,25 +350,36 @@ void UgvNavTask::read_map_patches(TimePoint now) {
   }
 }
 
+// The UAV's list of the UGVs near us replaces what we knew: one not in it is farther than the
+// list's radius. Without lists (the UAV silent) the last ones age: see collect_others.
 void UgvNavTask::read_other_ugvs(TimePoint now) {
-  msg::UgvStatus s;
-  while (statuses_in_.pop(s)) {
-    if (s.ugv_id == config_.id) continue;  // our own, echoed back
-    s.stamp = fleet_.to_local(s.stamp);
-    if (s.ugv_id >= limits::kMaxUgvs || !finite_status(s)) {
+  msg::NearbyUgvs m;
+  while (nearby_in_.pop(m)) {
+    if (m.ugv_id != config_.id || m.ugvs.size() > m.ugvs.capacity()) {
       ++health_.statuses_rejected;
       continue;
     }
-    const StampGate::Verdict v = status_stamps_[s.ugv_id].check(s.stamp, now);
+    const StampGate::Verdict v = nearby_stamps_.check(fleet_.to_local(m.stamp), now);
     if (v == StampGate::Verdict::kNotIncreasing) continue;  // duplicate or overtaken: dropped
     if (!StampGate::passed(v)) {
       ++health_.statuses_rejected;
       continue;
     }
-    OtherUgv& o = others_[s.ugv_id];
-    o.known = true;
-    o.heard = now;
-    o.status = s;
+    for (OtherUgv& o : others_)
+      o.known = false;
+    for (const msg::NearbyUgv& u : m.ugvs) {
+      if (!plausible(u)) {
+        ++health_.statuses_rejected;
+        continue;
+      }
+      if (u.ugv_id == config_.id) continue;  // ourselves: never planned around
+      OtherUgv& o = others_[u.ugv_id];
+      o.known = true;
+      o.heard = now - std::chrono::duration_cast<Duration>(
+                          std::chrono::duration<double>(std::min(u.silent_s, 1e6)));
+      o.state = u;
+      o.state.stamp = fleet_.to_local(u.stamp);
+    }
   }
 }
 
@@ -384,13 +393,12 @@ void UgvNavTask::collect_others(TimePoint now) {
     if (!o.known) continue;
     // Where it is now, having kept its reported velocity since its status was stamped (for half
     // a second at most: a silent robot may have stopped).
-    const Vec2 v =
-        o.status.velocity_mps * Vec2(std::cos(o.status.yaw_rad), std::sin(o.status.yaw_rad));
-    const double age = std::clamp(to_seconds(now - o.status.stamp), 0.0, 0.5);
-    const Vec2 p = Vec2(o.status.position_m[0], o.status.position_m[1]) + age * v;
+    const msg::NearbyUgv& u = o.state;
+    const Vec2 v = u.velocity_mps * Vec2(std::cos(u.yaw_rad), std::sin(u.yaw_rad));
+    const double age = std::clamp(to_seconds(now - u.stamp), 0.0, 0.5);
+    const Vec2 p = Vec2(u.position_m[0], u.position_m[1]) + age * v;
     Mat2 cov;
-    cov << o.status.covariance[0], o.status.covariance[1], o.status.covariance[3],
-        o.status.covariance[4];
+    cov << u.covariance_xy[0], u.covariance_xy[1], u.covariance_xy[1], u.covariance_xy[2];
     // Its own 3 sigma (capped: a robot lost on its own is not a wall), then as far as it can
     // have driven since it was last heard (our clock: another board's stamps do not tell).
     const double silent_s = std::max(to_seconds(now - o.heard), 0.0);

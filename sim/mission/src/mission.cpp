@@ -171,6 +171,9 @@ std::vector<sim::ClockModel> draw_clocks(const MissionConfig& cfg) {
   return out;
 }
 
+// Each robot's port on the simulated network: UGV i's is i, the UAV's the last.
+constexpr std::size_t kUavPort = platform::LoopbackTransport::kParticipants - 1;
+
 // After the UGV lanes ran: their samples go onto the bus in lane order, as if the UGVs' tasks
 // had run one after the other.
 class FlushOutboxes final : public platform::LaneBarrier {
@@ -368,10 +371,10 @@ std::unique_ptr<Mission> Mission::compose(const MissionConfig& cfg, std::string&
     uc.lidar_pattern = beam_pattern_of(wc.lidar);
     uc.camera_view = camera_view_of(wc.camera);
     sim::SimWorld& w = *p->world;
-    p->uav = std::make_unique<uav::UavSupervisorTask>(uc, *p->bus, w.uav(), w.uav_lidar(),
-                                                      w.uav_camera(), w.uav(), p->pool.get());
+    p->uav = std::make_unique<uav::UavSupervisorTask>(
+        uc, p->bus->port(kUavPort), w.uav(), w.uav_lidar(), w.uav_camera(), w.uav(), p->pool.get());
   } else {
-    p->reference = std::make_unique<ReferenceFrameTask>(*p->bus);
+    p->reference = std::make_unique<ReferenceFrameTask>(p->bus->port(kUavPort));
   }
 
   // The UGVs, each behind its own CAN link, each publishing through its own outbox: a UGV's
@@ -399,7 +402,7 @@ std::unique_ptr<Mission> Mission::compose(const MissionConfig& cfg, std::string&
     nc.map.unknown_blocks_prediction = !cfg.self_perception;
     s.base =
         std::make_unique<hal::can::CanBase>(p->world->ugv_can(i), wc.ugv.base, wc.ugv.geometry);
-    s.outbox = std::make_unique<platform::LaneOutbox>(*p->bus);
+    s.outbox = std::make_unique<platform::LaneOutbox>(p->bus->port(static_cast<std::size_t>(i)));
     s.task = std::make_unique<ugv::UgvNavTask>(nc, *s.outbox, s.base->odometry(), s.base->drive());
     if (cfg.self_perception)
       s.perception =
@@ -589,9 +592,17 @@ MissionOutcome Mission::collect(MissionTrace* trace) const {
     UgvOutcome& o = out.ugvs[i];
     o.id = static_cast<int>(i);
     o.support_requests = p.support->requests[i];
+    if (out.sim_time_s > 0.0)
+      o.bytes_in_per_s = static_cast<double>(p.bus->traffic(i).bytes_in) / out.sim_time_s;
     if (!o.reached) o.reach_time_s = -1.0;
   }
   summarise(*p.world, out);
+  if (out.sim_time_s > 0.0) {
+    out.uav_bytes_in_per_s =
+        static_cast<double>(p.bus->traffic(kUavPort).bytes_in) / out.sim_time_s;
+    out.uav_bytes_out_per_s =
+        static_cast<double>(p.bus->traffic(kUavPort).bytes_out) / out.sim_time_s;
+  }
   if (p.uav) {
     out.uav_traj_length_m = p.world->uav().travelled_m();
     out.map_patches = p.uav->sharer().counters().patches;

@@ -89,6 +89,7 @@ void summarise(const sim::SimWorld& world, MissionOutcome& out) {
     out.waiting_time_s += o.stopped_s / n;
     out.max_waiting_time_s = std::max(out.max_waiting_time_s, o.stopped_s);
     out.nees_mean += o.nees_mean / n;
+    out.bytes_in_per_ugv_per_s += o.bytes_in_per_s / n;
     out.ugv_traj_length_m += o.traj_length_m / n;
     o.end = end_of(o);
   }
@@ -158,6 +159,7 @@ std::string to_json(const MissionOutcome& o, bool include_wall_time) {
     ju["traj_length_m"] = u.traj_length_m;
     ju["min_clearance_m"] = u.min_clearance_m;
     ju["support_requests"] = u.support_requests;
+    ju["bytes_in_per_s"] = u.bytes_in_per_s;
     ju["goal_distance_m"] = u.goal_distance_m;
     ju["end"] = u.end;
     ugvs.push_back(ju);
@@ -172,6 +174,7 @@ std::string to_json(const MissionOutcome& o, bool include_wall_time) {
   s["ugv_traj_length_m"] = o.ugv_traj_length_m;
   s["uav_traj_length_m"] = o.uav_traj_length_m;
   s["nees_mean"] = o.nees_mean;
+  s["bytes_in_per_ugv_per_s"] = o.bytes_in_per_ugv_per_s;
   s["collisions"] = o.collisions;
   s["all_reached"] = o.all_reached;
   j["summary"] = s;
@@ -189,6 +192,8 @@ std::string to_json(const MissionOutcome& o, bool include_wall_time) {
     j["wall_time_s"] = o.wall_time_s;
     j["realtime_factor"] = o.wall_time_s > 0.0 ? o.sim_time_s / o.wall_time_s : 0.0;
   }
+  j["uav_bytes_in_per_s"] = o.uav_bytes_in_per_s;
+  j["uav_bytes_out_per_s"] = o.uav_bytes_out_per_s;
   j["map_patches"] = o.map_patches;
   j["map_patch_bytes"] = o.map_patch_bytes;
   j["schedules"] = o.schedules;

@@ -12,6 +12,7 @@ namespace colag::limits {
 inline constexpr std::size_t kMaxUgvs = 16;
 inline constexpr std::size_t kMaxRobots = kMaxUgvs + 1;  // + the UAV
 inline constexpr std::size_t kMaxSupportRequests = 64;   // live CollisionInfo requests at the UAV
+inline constexpr std::size_t kMaxNearbyUgvs = 12;        // other UGVs the UAV relays to one UGV
 
 // --- World grids (UAV 3-D map, UGV 2-D map) ----------------------------------------------------
 inline constexpr double kGridResolution_m = 0.1;

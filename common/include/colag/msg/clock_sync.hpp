@@ -22,7 +22,8 @@ COLAG_MESSAGE_FIELDS(ClockRequest, stamp, ugv_id, seq);
 // Lost requests are simply asked again: best effort, only the newest per UGV.
 template <>
 inline constexpr TopicSpec<ClockRequest> kTopicSpec<ClockRequest> = {
-    "colag_clock_request", &ClockRequest::ugv_id, Reliability::kBestEffort, 1, Duration::zero()};
+    "colag_clock_request", &ClockRequest::ugv_id, Reliability::kBestEffort, 1,
+    Duration::zero(),      Delivery::kPerUgv};
 
 // UAV -> the UGV that asked.
 struct ClockReply {
@@ -37,6 +38,7 @@ struct ClockReply {
 COLAG_MESSAGE_FIELDS(ClockReply, stamp, uav_id, ugv_id, seq, request_stamp, received);
 template <>
 inline constexpr TopicSpec<ClockReply> kTopicSpec<ClockReply> = {
-    "colag_clock_reply", &ClockReply::ugv_id, Reliability::kBestEffort, 1, Duration::zero()};
+    "colag_clock_reply", &ClockReply::ugv_id, Reliability::kBestEffort, 1,
+    Duration::zero(),    Delivery::kPerUgv};
 
 }  // namespace colag::msg

@@ -26,6 +26,7 @@ COLAG_MESSAGE_FIELDS(CollisionInfo, stamp, ugv_id, seq, cancel, collision_point_
 // Reliable, and only the latest per UGV is kept, so a cancel always supersedes its request.
 template <>
 inline constexpr TopicSpec<CollisionInfo> kTopicSpec<CollisionInfo> = {
-    "colag_collision_info", &CollisionInfo::ugv_id, Reliability::kReliable, 1, Duration::zero()};
+    "colag_collision_info", &CollisionInfo::ugv_id, Reliability::kReliable, 1,
+    Duration::zero(),       Delivery::kPerUgv};
 
 }  // namespace colag::msg

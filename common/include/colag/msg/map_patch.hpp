@@ -43,6 +43,7 @@ COLAG_MESSAGE_FIELDS(MapPatch, stamp, uav_id, ugv_id, seq, resolution_m, origin_
 // Every patch must arrive (a UGV plans on it): reliable. Filed under the UGV it is for.
 template <>
 inline constexpr TopicSpec<MapPatch> kTopicSpec<MapPatch> = {
-    "colag_map_patch", &MapPatch::ugv_id, Reliability::kReliable, 4, Duration::zero()};
+    "colag_map_patch", &MapPatch::ugv_id, Reliability::kReliable, 4,
+    Duration::zero(),  Delivery::kPerUgv};
 
 }  // namespace colag::msg

@@ -23,6 +23,7 @@ COLAG_MESSAGE_FIELDS(RelativePose, stamp, uav_id, ugv_id, position_m, orientatio
 // Each one corrects the UGV's estimate: reliable. Filed under the UGV it is about.
 template <>
 inline constexpr TopicSpec<RelativePose> kTopicSpec<RelativePose> = {
-    "colag_relative_pose", &RelativePose::ugv_id, Reliability::kReliable, 8, Duration::zero()};
+    "colag_relative_pose", &RelativePose::ugv_id, Reliability::kReliable, 8,
+    Duration::zero(),      Delivery::kPerUgv};
 
 }  // namespace colag::msg

@@ -13,16 +13,18 @@
 #include "colag/msg/clock_sync.hpp"
 #include "colag/msg/collision_info.hpp"
 #include "colag/msg/map_patch.hpp"
+#include "colag/msg/nearby_ugvs.hpp"
 #include "colag/msg/relative_pose.hpp"
 #include "colag/msg/support_plan.hpp"
 #include "colag/msg/uav_odometry.hpp"
 #include "colag/msg/ugv_status.hpp"
+#include "colag/msg/wire_size.hpp"
 
 namespace colag::msg {
 
 // Every message that crosses between robots, in topic order.
 using Messages = std::tuple<UavOdometry, RelativePose, MapPatch, CollisionInfo, UgvStatus,
-                            SupportPlan, ClockRequest, ClockReply>;
+                            SupportPlan, ClockRequest, ClockReply, NearbyUgvs>;
 
 inline constexpr std::size_t kTopicCount = std::tuple_size_v<Messages>;
 
@@ -60,6 +62,7 @@ struct TopicInfo {
   Reliability reliability;
   std::uint16_t history_depth;  // keep-last depth per key (robot)
   Duration deadline;            // expected max gap between samples of one key; 0 = none
+  Delivery delivery;
 };
 
 inline constexpr std::array<TopicInfo, kTopicCount> kTopicTable =
@@ -67,7 +70,7 @@ inline constexpr std::array<TopicInfo, kTopicCount> kTopicTable =
   return std::array<TopicInfo, kTopicCount>{
       TopicInfo{static_cast<Topic>(I), kTopicSpec<MessageAt<I>>.name, sizeof(MessageAt<I>),
                 kTopicSpec<MessageAt<I>>.reliability, kTopicSpec<MessageAt<I>>.history_depth,
-                kTopicSpec<MessageAt<I>>.deadline}...};
+                kTopicSpec<MessageAt<I>>.deadline, kTopicSpec<MessageAt<I>>.delivery}...};
 }
 (std::make_index_sequence<kTopicCount>{});
 
@@ -107,6 +110,12 @@ inline RobotId message_key(Topic topic, const void* sample) {
   return visit_message_type(topic, [&]<class Msg>() {
     return MessageTraits<Msg>::key(*static_cast<const Msg*>(sample));
   });
+}
+
+// The bytes a type-erased sample puts on the wire (wire_size.hpp).
+inline std::size_t message_wire_bytes(Topic topic, const void* sample) {
+  return visit_message_type(
+      topic, [&]<class Msg>() { return wire_bytes(*static_cast<const Msg*>(sample)); });
 }
 
 // The largest message, for transports that hold samples in fixed slots.

@@ -147,8 +147,11 @@ COLAG_MESSAGE_FIELDS(UgvStatus, stamp, ugv_id, mode, position_m, yaw_rad, covari
 
 // Superseded by the next one 100 ms later: best effort; a UGV is expected every 500 ms.
 template <>
-inline constexpr TopicSpec<UgvStatus> kTopicSpec<UgvStatus> = {
-    "colag_ugv_status", &UgvStatus::ugv_id, Reliability::kBestEffort, 4,
-    std::chrono::milliseconds(500)};
+inline constexpr TopicSpec<UgvStatus> kTopicSpec<UgvStatus> = {"colag_ugv_status",
+                                                               &UgvStatus::ugv_id,
+                                                               Reliability::kBestEffort,
+                                                               4,
+                                                               std::chrono::milliseconds(500),
+                                                               Delivery::kPerUgv};
 
 }  // namespace colag::msg

@@ -5,7 +5,7 @@
 //   mapping_loop()    10 Hz: LiDAR scan -> 3-D map; the flight layer once a second
 //   sharing_loop()    20 Hz: a map patch to each UGV whose 5 Hz slot is due
 //   scheduling_loop() 10 Hz: support requests and UGV statuses -> schedule -> flight target,
-//                            SupportPlan
+//                            SupportPlan; each UGV's NearbyUgvs
 // Pure task code: HAL and transport interfaces only; no heap, no exceptions, no OS calls in
 // step(); malformed inputs are rejected and counted in health().
 #include <array>
@@ -24,6 +24,7 @@
 #include "colag/uav/flight_planner.hpp"
 #include "colag/uav/map_sharer.hpp"
 #include "colag/uav/mapper.hpp"
+#include "colag/uav/nearby_relay.hpp"
 #include "colag/uav/no_return_beams.hpp"
 #include "colag/uav/scheduler.hpp"
 #include "colag/uav/team_filter.hpp"
@@ -38,7 +39,8 @@ struct UavSupervisorConfig {
   MapperConfig mapper;
   SharerConfig sharer;
   SchedulerConfig scheduler;
-  TeamFilterConfig team;  // the UGVs' own returns, kept out of the map while they are alive
+  TeamFilterConfig team;     // the UGVs' own returns, kept out of the map while they are alive
+  NearbyRelayConfig nearby;  // which UGVs each UGV hears of, relayed every scheduling step
   // The paper's fallback when no order meets every deadline: plan as if v_max were 1.5x, 2.25x,
   // ... higher until one does (up to 100 times). Off: minimise total lateness instead.
   bool vmax_escalation = false;
@@ -92,6 +94,7 @@ struct UavHealth {
   std::uint64_t requests_rejected = 0;
   std::uint64_t statuses_rejected = 0;
   std::uint64_t patches_sent = 0;
+  std::uint64_t nearby_sent = 0;  // NearbyUgvs lists
   std::uint64_t setpoint_errors = 0;
   std::uint64_t schedules = 0;
   std::uint64_t schedules_exact = 0;
@@ -170,6 +173,7 @@ class UavSupervisorTask {
   void refresh_flight_layer();
   void filter_team(TimePoint now);
   void publish_plan(TimePoint now, bool changed);
+  void relay_nearby(TimePoint now);
 
   UavSupervisorConfig config_;
   platform::Transport& transport_;
@@ -217,6 +221,7 @@ class UavSupervisorTask {
   msg::SupportPlan plan_;
   TimePoint plan_published_ = kNever;
   std::uint32_t patch_seq_ = 0;
+  msg::NearbyUgvs nearby_;  // the list being sent (a member: ~1 kB off the stack)
   UavHealth health_;
 };
 

@@ -161,8 +161,8 @@ class UgvNavTask {
   using Loop = platform::MemberLoop<UgvNavTask>;
   struct OtherUgv {
     bool known = false;
-    TimePoint heard{};
-    msg::UgvStatus status;
+    TimePoint heard{};     // when its status was last heard (by the UAV, which relays it)
+    msg::NearbyUgv state;  // its stamp converted to our clock
   };
 
   Status init(TimePoint now);
@@ -205,11 +205,10 @@ class UgvNavTask {
   platform::QueueReader<msg::UavOdometry, 32> uav_odometry_in_;
   platform::QueueReader<msg::RelativePose, 16> rpe_in_;
   platform::QueueReader<msg::MapPatch, 8> patches_in_;
-  platform::QueueReader<msg::UgvStatus, 2 * limits::kMaxUgvs> statuses_in_;
+  platform::QueueReader<msg::NearbyUgvs, 4> nearby_in_;
 
-  // Each input stream's stamp checks (the other UGVs': one per sender).
-  StampGate wheel_stamps_, uav_odometry_stamps_, rpe_stamps_, patch_stamps_;
-  std::array<StampGate, limits::kMaxUgvs> status_stamps_{};
+  // Each input stream's stamp checks.
+  StampGate wheel_stamps_, uav_odometry_stamps_, rpe_stamps_, patch_stamps_, nearby_stamps_;
 
   FleetClock fleet_;
   UgvEkf ekf_;

@@ -49,6 +49,9 @@ struct UgvOutcome {
   double traj_length_m = 0.0;
   double min_clearance_m = 0.0;  // closest approach of its footprint to an obstacle or UGV
   std::uint64_t support_requests = 0;
+  // What the network carried to it (CDR bytes of every sample it receives, msg::wire_bytes;
+  // RTPS/UDP headers not included), per second of the mission.
+  double bytes_in_per_s = 0.0;
   msg::UgvMode final_mode = msg::UgvMode::kWaitingForInit;  // what it reported last
   double blocked_s = 0.0;  // time it reported kBlocked (it gave up asking for support)
   // Why, the last time it was blocked (with final_mode kBlocked: why it is now).
@@ -84,7 +87,10 @@ struct MissionOutcome {
   int reach_missing = 0;
   double waiting_time_s = 0.0;
   double max_waiting_time_s = 0.0;
-  double nees_mean = 0.0;  // the mean over the UGVs of their nees_mean
+  double nees_mean = 0.0;               // the mean over the UGVs of their nees_mean
+  double bytes_in_per_ugv_per_s = 0.0;  // the mean over the UGVs of their bytes_in_per_s
+  double uav_bytes_in_per_s = 0.0;
+  double uav_bytes_out_per_s = 0.0;
   double ugv_traj_length_m = 0.0;
   double uav_traj_length_m = 0.0;
   int collisions = 0;
