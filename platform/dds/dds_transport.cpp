@@ -15,6 +15,9 @@ constexpr std::uint32_t kTakeBatch = 16;
 std::size_t index(msg::Topic t) {
   return static_cast<std::size_t>(t);
 }
+bool per_ugv(msg::Topic t) {
+  return msg::topic_info(t).delivery == msg::Delivery::kPerUgv;
+}
 }  // namespace
 
 DdsTransport::~DdsTransport() {
@@ -40,10 +43,41 @@ dds_qos_t* DdsTransport::make_qos(const msg::TopicInfo& info) const {
                        DDS_MSECS(100));
   dds_qset_history(qos, DDS_HISTORY_KEEP_LAST, info.history_depth);
   if (info.deadline > Duration::zero()) dds_qset_deadline(qos, info.deadline.count());
-  if (config_.partition != nullptr && config_.partition[0] != '\0') {
-    dds_qset_partition1(qos, config_.partition);
-  }
   return qos;
+}
+
+void DdsTransport::partition_name(RobotId ugv, char* out, std::size_t size) const {
+  const char* base = config_.partition != nullptr ? config_.partition : "";
+  if (ugv == kAnyRobot) {
+    std::snprintf(out, size, "%s", base);
+  } else {
+    std::snprintf(out, size, "%s%sugv%u", base, base[0] != '\0' ? "." : "",
+                  static_cast<unsigned>(ugv));
+  }
+}
+
+dds_entity_t DdsTransport::publisher(RobotId ugv) {
+  dds_entity_t& pub = ugv == kAnyRobot ? fleet_publisher_ : ugv_publishers_[ugv];
+  if (pub > 0) return pub;
+  char name[128];
+  partition_name(ugv, name, sizeof name);
+  dds_qos_t* qos = dds_create_qos();
+  dds_qset_partition1(qos, name);
+  pub = dds_create_publisher(participant_, qos, nullptr);
+  dds_delete_qos(qos);
+  return pub;
+}
+
+dds_entity_t DdsTransport::subscriber(RobotId ugv) {
+  dds_entity_t& sub = ugv == kAnyRobot ? fleet_subscriber_ : ugv_subscribers_[ugv];
+  if (sub > 0) return sub;
+  char name[128];
+  partition_name(ugv, name, sizeof name);
+  dds_qos_t* qos = dds_create_qos();
+  dds_qset_partition1(qos, name);
+  sub = dds_create_subscriber(participant_, qos, nullptr);
+  dds_delete_qos(qos);
+  return sub;
 }
 
 Status DdsTransport::init(const DdsConfig& config) {
@@ -59,6 +93,8 @@ Status DdsTransport::init(const DdsConfig& config) {
                                   : "dds_create_participant failed");
   }
 
+  if (config_.ugvs.count == 0 || config_.ugvs.first + config_.ugvs.count > limits::kMaxUgvs)
+    return {Errc::kInvalidArgument, "DDS transport: UGV range outside 0 .. kMaxUgvs-1"};
   for (const msg::TopicInfo& info : msg::kTopicTable) {
     const std::size_t i = index(info.topic);
     dds_qos_t* qos = make_qos(info);
@@ -69,11 +105,18 @@ Status DdsTransport::init(const DdsConfig& config) {
       dds_delete_qos(qos);
       return fail(topics_[i], "dds_create_topic failed");
     }
-    if (config.publishes[i]) {
-      writers_[i] = dds_create_writer(participant_, topics_[i], qos, nullptr);
-      if (writers_[i] < 0) {
+    // A writer in each partition it may write to: the fleet's, or each of its UGVs'.
+    const bool each_ugv = per_ugv(info.topic);
+    const RobotId first = each_ugv ? config_.ugvs.first : kAnyRobot;
+    const int writers = config.publishes[i] ? (each_ugv ? config_.ugvs.count : 1) : 0;
+    for (int k = 0; k < writers; ++k) {
+      const RobotId ugv = each_ugv ? static_cast<RobotId>(first + k) : kAnyRobot;
+      const dds_entity_t pub = publisher(ugv);
+      dds_entity_t& w = writers_[i][each_ugv ? ugv : 0];
+      w = pub > 0 ? dds_create_writer(pub, topics_[i], qos, nullptr) : pub;
+      if (w < 0) {
         dds_delete_qos(qos);
-        return fail(writers_[i], "dds_create_writer failed");
+        return fail(w, "dds_create_writer failed");
       }
     }
     dds_delete_qos(qos);
@@ -82,18 +125,34 @@ Status DdsTransport::init(const DdsConfig& config) {
   return Status::ok();
 }
 
+Status DdsTransport::add_reader(msg::Topic topic, RobotId ugv) {
+  for (const Reader& r : readers_)
+    if (r.topic == topic && r.ugv == ugv) return Status::ok();
+  const dds_entity_t sub = subscriber(ugv);
+  if (sub < 0) return fail(sub, "dds_create_subscriber failed");
+  dds_qos_t* qos = make_qos(msg::topic_info(topic));
+  const dds_entity_t reader = dds_create_reader(sub, topics_[index(topic)], qos, nullptr);
+  dds_delete_qos(qos);
+  if (reader < 0) return fail(reader, "dds_create_reader failed");
+  if (!readers_.push_back({reader, topic, ugv})) {
+    (void)dds_delete(reader);
+    return {Errc::kCapacityExceeded, "DDS transport: too many readers"};
+  }
+  return Status::ok();
+}
+
 Status DdsTransport::subscribe(msg::Topic topic, RobotId key, SampleSink& sink) {
   if (participant_ <= 0) return {Errc::kNotReady, "DDS transport not initialised"};
   if (index(topic) >= msg::kTopicCount) return {Errc::kInvalidArgument, "unknown topic"};
-  const std::size_t i = index(topic);
-  if (readers_[i] == 0) {
-    dds_qos_t* qos = make_qos(msg::topic_info(topic));
-    readers_[i] = dds_create_reader(participant_, topics_[i], qos, nullptr);
-    dds_delete_qos(qos);
-    if (readers_[i] < 0) {
-      const dds_return_t rc = readers_[i];
-      readers_[i] = 0;
-      return fail(rc, "dds_create_reader failed");
+  if (!per_ugv(topic)) {
+    if (Status s = add_reader(topic, kAnyRobot); !s) return s;
+  } else if (key != kAnyRobot) {
+    if (!config_.ugvs.contains(key))
+      return {Errc::kInvalidArgument, "DDS transport: that UGV's partition is not this robot's"};
+    if (Status s = add_reader(topic, key); !s) return s;
+  } else {
+    for (std::uint16_t k = 0; k < config_.ugvs.count; ++k) {
+      if (Status s = add_reader(topic, static_cast<RobotId>(config_.ugvs.first + k)); !s) return s;
     }
   }
   if (!subscriptions_.push_back({topic, key, &sink})) {
@@ -113,9 +172,14 @@ Status DdsTransport::write(dds_entity_t writer, const void* sample) {
 
 Status DdsTransport::publish(msg::Topic topic, const void* sample) {
   const std::size_t i = index(topic);
-  if (i >= msg::kTopicCount || sample == nullptr || writers_[i] <= 0) {
+  dds_entity_t writer = 0;
+  if (i < msg::kTopicCount && sample != nullptr) {
+    const RobotId key = per_ugv(topic) ? msg::message_key(topic, sample) : RobotId{0};
+    writer = key < limits::kMaxUgvs ? writers_[i][key] : 0;
+  }
+  if (writer <= 0) {
     refused_.fetch_add(1, std::memory_order_relaxed);
-    return {Errc::kInvalidArgument, "DDS transport: no writer for this topic"};
+    return {Errc::kInvalidArgument, "DDS transport: no writer for this topic (or this UGV)"};
   }
   {
     const std::lock_guard<std::mutex> lock(out_mutex_);
@@ -125,6 +189,7 @@ Status DdsTransport::publish(msg::Topic topic, const void* sample) {
     }
     Outgoing& slot = outbox_[(out_head_ + out_size_) % outbox_.size()];
     slot.topic = topic;
+    slot.writer = writer;
     std::memcpy(slot.bytes.data(), sample, msg::topic_info(topic).size_bytes);
     ++out_size_;
     queued_.fetch_add(1, std::memory_order_relaxed);
@@ -147,9 +212,8 @@ void DdsTransport::writer_loop() {
       out_head_ = (out_head_ + 1) % outbox_.size();
       --out_size_;
     }
-    const std::size_t i = index(out.topic);
     const Status s = msg::visit_message_type(
-        out.topic, [&]<class Msg>() { return write<Msg>(writers_[i], out.bytes.data()); });
+        out.topic, [&]<class Msg>() { return write<Msg>(out.writer, out.bytes.data()); });
     (s ? written_ : write_failed_).fetch_add(1, std::memory_order_relaxed);
     handled_.fetch_add(1, std::memory_order_release);
     if (stopping_.load()) out_pending_.release();  // keep draining until the outbox is empty
@@ -181,9 +245,9 @@ void DdsTransport::dispatch(msg::Topic topic, const void* sample, TimePoint now)
 }
 
 template <class Msg>
-void DdsTransport::drain(msg::Topic topic, TimePoint now) {
+void DdsTransport::drain(const Reader& r, TimePoint now) {
   using Idl = typename IdlSample<Msg>::Type;
-  const dds_entity_t reader = readers_[index(topic)];
+  const dds_entity_t reader = r.reader;
   for (;;) {
     void* buf[kTakeBatch] = {};
     dds_sample_info_t info[kTakeBatch];
@@ -196,7 +260,11 @@ void DdsTransport::drain(msg::Topic topic, TimePoint now) {
         ++stats_.malformed;
         continue;
       }
-      dispatch(topic, &m, now);
+      if (r.ugv != kAnyRobot && msg::MessageTraits<Msg>::key(m) != r.ugv) {
+        ++stats_.misaddressed;
+        continue;
+      }
+      dispatch(r.topic, &m, now);
     }
     dds_return_loan(reader, buf, n);
     if (static_cast<std::uint32_t>(n) < kTakeBatch) break;
@@ -212,10 +280,8 @@ void DdsTransport::drain(msg::Topic topic, TimePoint now) {
 }
 
 void DdsTransport::poll(TimePoint now) {
-  for (const msg::TopicInfo& info : msg::kTopicTable) {
-    if (readers_[index(info.topic)] <= 0) continue;
-    msg::visit_message_type(info.topic, [&]<class Msg>() { drain<Msg>(info.topic, now); });
-  }
+  for (const Reader& r : readers_)
+    msg::visit_message_type(r.topic, [&]<class Msg>() { drain<Msg>(r, now); });
 }
 
 }  // namespace colag::platform::dds

@@ -9,6 +9,10 @@
 //   intruder  a valid fleet identity allowed to publish UGV status only: tries to create map
 //             patch and relative pose writers; exits 3 when access control refuses them, 0 if it
 //             could publish (a failure of the test)
+//   spoofer   UGV 2's identity writing statuses in UGV 1's partition (as UGV 1); exits 3 when
+//             access control refuses the writer
+//   eavesdropper  UGV 2's identity reading UGV 1's map patches; exits 3 when the reader is
+//             refused
 // ROS 2 commands to UGV 1 (rt/ugv1/command, colag_msgs/UgvCommand, every 100 ms):
 //   operator             the fleet's operator identity: PAUSE (the only one allowed)
 //   ROLE-commands        ROLE = rogue, plain, forger, intruder as above: ABORT; exits 3 when its
@@ -87,7 +91,8 @@ int main(int argc, char** argv) {
   if (argc != 5) {
     std::fprintf(
         stderr,
-        "usage: colag_dds_secure_peer uav|rogue|plain|forger|intruder DOMAIN PKI SECONDS\n");
+        "usage: colag_dds_secure_peer uav|rogue|plain|forger|intruder|spoofer|eavesdropper DOMAIN "
+        "PKI SECONDS\n");
     return 2;
   }
   const std::string pki = argv[3];
@@ -102,6 +107,7 @@ int main(int argc, char** argv) {
   // The UAV's writers only (its permissions allow nothing else); the intruder tries all.
   if (role != "intruder")
     cfg.publish_only<msg::UavOdometry, msg::RelativePose, msg::MapPatch, msg::SupportPlan>();
+  cfg.ugvs = {0, 3};  // the test fleet's UGVs (make-pki --ugvs 3)
   if (role == "uav") {
     cfg.security = identity(pki, "uav", pki + "/ca.pem");
   } else if (role == "rogue") {
@@ -116,6 +122,14 @@ int main(int argc, char** argv) {
     uav_id = 88;
   } else if (role == "intruder") {
     cfg.security = identity(pki, "intruder", pki + "/ca.pem");
+  } else if (role == "spoofer" || role == "eavesdropper") {
+    // UGV 2's identity, in UGV 1's partition: to publish statuses as UGV 1, or read its patches.
+    cfg.security = identity(pki, "ugv2", pki + "/ca.pem");
+    cfg.ugvs = {1, 1};
+    if (role == "spoofer")
+      cfg.publish_only<msg::UgvStatus>();
+    else
+      cfg.publish_only<>();
   } else if (role == "operator") {
     cfg.security = identity(pki, "operator", pki + "/ca.pem");
   } else {
@@ -127,14 +141,21 @@ int main(int argc, char** argv) {
     return send_commands(role, cfg.domain_id, cfg.security, role == "operator" ? 1 : 3, run_for);
   }
   platform::dds::DdsTransport dds;
-  if (Status s = dds.init(cfg); !s) {
-    std::printf("colag_dds_secure_peer %s: %s (%s)\n", role.c_str(), s.message(),
-                dds_strretcode(dds.last_error()));
-    // The intruder's writers for the UAV's topics must be refused by access control.
-    return role == "intruder" && dds.last_error() == DDS_RETCODE_NOT_ALLOWED_BY_SECURITY ? 3 : 2;
+  const bool refused_role = role == "intruder" || role == "spoofer" || role == "eavesdropper";
+  Status started = dds.init(cfg);
+  if (started && role == "eavesdropper") {
+    static platform::LatestReader<msg::MapPatch> patches;
+    started = patches.attach(dds, 1);
   }
-  if (role == "intruder") {
-    std::printf("colag_dds_secure_peer intruder: access control let it publish map patches\n");
+  if (!started) {
+    std::printf("colag_dds_secure_peer %s: %s (%s)\n", role.c_str(), started.message(),
+                dds_strretcode(dds.last_error()));
+    // Access control must refuse the intruder's writers for the UAV's topics, the spoofer's
+    // writer in another UGV's partition and the eavesdropper's reader there.
+    return refused_role && dds.last_error() == DDS_RETCODE_NOT_ALLOWED_BY_SECURITY ? 3 : 2;
+  }
+  if (refused_role) {
+    std::printf("colag_dds_secure_peer %s: access control let it in\n", role.c_str());
     return 0;
   }
   platform::LatestReader<msg::UgvStatus> status;

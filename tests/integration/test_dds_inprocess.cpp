@@ -130,6 +130,47 @@ TEST_F(DdsPair, KeyFilterDeliversOnlyThatRobotsSamples) {
   EXPECT_EQ(got_other, 0u);
 }
 
+// A UGV's participant joins only its own partition: the UAV's patches for other UGVs never
+// reach it (not filtered on arrival: never sent to it), and it can publish only as itself.
+TEST_F(DdsPair, AUgvParticipantReceivesOnlyItsOwnPartitionAndSpeaksOnlyAsItself) {
+  dds::DdsTransport ugv3;
+  dds::DdsConfig cfg;
+  cfg.domain_id = test::private_domain_id();
+  cfg.ugvs = {3, 1};
+  cfg.publish_only<msg::UgvStatus>();
+  ASSERT_TRUE(ugv3.init(cfg));
+  QueueReader<msg::MapPatch, 64> any;  // every key it can see
+  ASSERT_TRUE(any.attach(ugv3));
+  QueueReader<msg::MapPatch, 4> for2;
+  EXPECT_EQ(for2.attach(ugv3, 2).code(), Errc::kInvalidArgument);
+  msg::MapPatch p2, p3;
+  p2.ugv_id = 2;
+  p3.ugv_id = 3;
+  std::size_t got3 = 0, got_other = 0;
+  const auto deadline = std::chrono::steady_clock::now() + 10s;
+  while (got3 < 3 && std::chrono::steady_clock::now() < deadline) {
+    ASSERT_TRUE(a.publish(p2));
+    ASSERT_TRUE(a.publish(p3));
+    std::this_thread::sleep_for(10ms);
+    ugv3.poll(TimePoint{});
+    msg::MapPatch m;
+    while (any.pop(m))
+      (m.ugv_id == 3 ? got3 : got_other)++;
+  }
+  EXPECT_GE(got3, 3u);
+  EXPECT_EQ(got_other, 0u);
+
+  msg::UgvStatus as_other;
+  as_other.ugv_id = 1;
+  EXPECT_EQ(ugv3.publish(as_other).code(), Errc::kInvalidArgument);
+  msg::UgvStatus as_itself;
+  as_itself.ugv_id = 3;
+  EXPECT_TRUE(ugv3.publish(as_itself));
+  cfg.ugvs = {30, 5};  // past kMaxUgvs
+  dds::DdsTransport bad;
+  EXPECT_EQ(bad.init(cfg).code(), Errc::kInvalidArgument);
+}
+
 TEST_F(DdsPair, WriterOnlyForTopicsTheRobotPublishes) {
   dds::DdsTransport ugv;
   dds::DdsConfig cfg;

@@ -76,12 +76,16 @@ TEST(DdsSecurity, OnlyTheFleetUavReachesTheUgvAndTheMissionTrafficFlows) {
   test::confine_dds_to_loopback();
   const std::uint32_t domain = test::private_domain_id();
 
-  // The intruder's writers are refused when it starts.
+  // The intruder's writers are refused when it starts; so are UGV 2's writer and reader in
+  // UGV 1's partition (it cannot speak for UGV 1, nor read what is meant for it).
   EXPECT_EQ(exit_code(spawn("intruder", domain, pki, "1")), 3);
+  EXPECT_EQ(exit_code(spawn("spoofer", domain, pki, "1")), 3);
+  EXPECT_EQ(exit_code(spawn("eavesdropper", domain, pki, "1")), 3);
 
   platform::dds::DdsConfig cfg;
   cfg.domain_id = domain;
   cfg.security = fleet_identity(pki, "ugv1");
+  cfg.ugvs = {1, 1};
   cfg.publish_only<msg::CollisionInfo, msg::UgvStatus>();
   platform::dds::DdsTransport dds;
   ASSERT_TRUE(dds.init(cfg)) << dds_strretcode(dds.last_error());

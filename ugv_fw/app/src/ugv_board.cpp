@@ -51,6 +51,7 @@ bool UgvBoard::start(std::string& error) {
   dds_cfg.domain_id = cfg.common.dds_domain;
   dds_cfg.partition = cfg.common.dds_partition.c_str();
   dds_cfg.security = cfg.common.dds_security;
+  dds_cfg.ugvs = {cfg.nav.id, 1};  // its own partition only: what is for it, and as itself
   dds_cfg
       .publish_only<msg::UgvStatus, msg::CollisionInfo, msg::ClockRequest>();  // what a UGV sends
   if (const Status s = dds_.init(dds_cfg); !s) {

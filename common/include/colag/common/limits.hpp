@@ -62,6 +62,8 @@ inline constexpr std::size_t kLoopbackMaxDeliveries = 4096;  // (sample, subscri
 inline constexpr std::size_t kDefaultReaderDepth = 8;
 inline constexpr std::size_t kLaneOutboxSamples = 8;  // one simulated robot's samples per instant
 inline constexpr std::size_t kDdsOutboxDepth = 64;    // samples awaiting the DDS writer thread
-inline constexpr std::size_t kRos2CommandQueue = 8;   // ROS 2 commands awaiting a UGV's step
+// DDS readers of one participant: a listener of every per-UGV topic reads each UGV's partition.
+inline constexpr std::size_t kMaxDdsReaders = 8 * kMaxUgvs;
+inline constexpr std::size_t kRos2CommandQueue = 8;  // ROS 2 commands awaiting a UGV's step
 
 }  // namespace colag::limits
