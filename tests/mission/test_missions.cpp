@@ -74,6 +74,10 @@ TEST(Mission, DenseFiveUgvsAllReachWithoutCollision) {
     EXPECT_GT(u.nees_samples, 100u) << "UGV " << u.id;
     EXPECT_GT(u.nees_mean, 1.0) << "UGV " << u.id;
     EXPECT_LT(u.nees_mean, 6.0) << "UGV " << u.id;
+    // Each UGV receives what is meant for it (and the UAV's fleet topics), not everything the
+    // UAV sends to the five of them: under half of it (it was all of it, and more, before).
+    EXPECT_GT(u.bytes_in_per_s, 1000.0) << "UGV " << u.id;
+    EXPECT_LT(u.bytes_in_per_s, 0.5 * o.uav_bytes_out_per_s) << "UGV " << u.id;
   }
 }
 
