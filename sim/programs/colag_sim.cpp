@@ -16,6 +16,7 @@
 
 #include "colag/sim/host_program.hpp"
 #include "colag/sim/mission/mission.hpp"
+#include "colag/sim/mission/scenario_file.hpp"
 #include "colag/sim/mission/world_file.hpp"
 #include "colag/sim/mission_png.hpp"
 #include "colag/sim/recording/mcap_recorder.hpp"
@@ -90,10 +91,18 @@ int run(int argc, char** argv) {
                                   "generated map: sparse (40 boxes), dense (80) or pillars (80, "
                                   "0.2-0.5 m wide, 0.6-1.2 m tall)")
                        ->check(CLI::IsMember({"sparse", "dense", "pillars"}));
-  app.add_option("--map", map_file, "a PCD map instead (ascii or binary; x y z)")
+  auto* map_opt = app.add_option("--map", map_file, "a PCD map instead (ascii or binary; x y z)")
+                      ->excludes(scenario)
+                      ->check(CLI::ExistingFile);
+  auto* ugvs_opt = app.add_option("--ugvs", cfg.ugvs, "number of UGVs")
+                       ->check(CLI::Range(1, static_cast<int>(limits::kMaxUgvs)));
+  std::string scenario_file;
+  app.add_option("--scenario-file", scenario_file,
+                 "a YAML scenario: the map, each UGV's start and goal, the UAV's start, the world, "
+                 "faults (config/scenarios/README.md); options given as well override its values")
       ->excludes(scenario)
-      ->check(CLI::ExistingFile);
-  app.add_option("--ugvs", cfg.ugvs, "number of UGVs")->check(CLI::Range(1, 16));
+      ->excludes(map_opt)
+      ->excludes(ugvs_opt);
   std::string world_name = "ideal";
   app.add_option("--world", world_name,
                  "ideal (the noise the firmware's models assume: the paper's tables), field (what "
@@ -187,9 +196,25 @@ int run(int argc, char** argv) {
     cfg.map_file = map_file;
   }
   mission::parse_ablation(ablation, cfg.ablation);
-  if (std::string error; !mission::world_from_name(world_name, cfg.world, error)) {
-    std::fprintf(stderr, "colag_sim: --world: %s\n", error.c_str());
-    return 2;
+  const bool given_world = app.get_option("--world")->count() > 0;
+  if (!scenario_file.empty()) {
+    // The file's values, then what the command line gave explicitly.
+    const mission::MissionConfig cli = cfg;
+    if (std::string error; !mission::load_scenario_file(scenario_file, cfg, error)) {
+      std::fprintf(stderr, "colag_sim: --scenario-file: %s\n", error.c_str());
+      return 2;
+    }
+    if (app.get_option("--seed")->count() > 0) cfg.seed = cli.seed;
+    if (app.get_option("--max-time")->count() > 0) cfg.max_time_s = cli.max_time_s;
+    if (app.get_option("--latency-ms")->count() > 0) cfg.faults.latency_ms = cli.faults.latency_ms;
+    if (app.get_option("--jitter-ms")->count() > 0) cfg.faults.jitter_ms = cli.faults.jitter_ms;
+    if (app.get_option("--loss")->count() == 0) loss_pct = cfg.faults.loss * 100.0;
+  }
+  if (scenario_file.empty() || given_world) {
+    if (std::string error; !mission::world_from_name(world_name, cfg.world, error)) {
+      std::fprintf(stderr, "colag_sim: --world: %s\n", error.c_str());
+      return 2;
+    }
   }
   if (fov_opt->count() + range_opt->count() + sigma_opt->count() + true_opt->count() > 0)
     cfg.world.name += "+camera";  // the JSON and the table say the world is not the file's

@@ -12,8 +12,9 @@ namespace {
 constexpr double kMaxSite_m = 1000.0;  // wider than this: not metres
 }  // namespace
 
-bool check_map(const sim::BoxWorld& world, const sim::CloudWorldReport& report, int ugvs,
-               std::vector<std::string>& warnings, std::string& error) {
+bool check_map(const sim::BoxWorld& world, const sim::CloudWorldReport& report,
+               const MissionConfig& cfg, std::vector<std::string>& warnings, std::string& error) {
+  const int ugvs = cfg.ugvs;
   char text[320];
   const Vec2 lo(world.min_x_m, world.min_y_m), hi(world.max_x_m, world.max_y_m);
   if (report.extent_m.maxCoeff() > kMaxSite_m) {
@@ -29,13 +30,16 @@ bool check_map(const sim::BoxWorld& world, const sim::CloudWorldReport& report, 
     return (p.array() >= lo.array()).all() && (p.array() <= hi.array()).all();
   };
   for (int i = 0; i < ugvs; ++i) {
-    for (const auto& [what, p] : {std::pair{"start", ugv_start(i).p}, {"goal", ugv_goal(i)}}) {
+    for (const auto& [what, p] :
+         {std::pair{"start", ugv_start(cfg, i).p}, {"goal", ugv_goal(cfg, i)}}) {
       if (!inside_map(p)) {
         std::snprintf(text, sizeof text,
                       "UGV %d's %s (%.1f, %.1f) lies outside the map (x %.1f..%.1f, y "
-                      "%.1f..%.1f): the layout puts starts at y = 16 and goals at y = -16 about "
-                      "the origin; is the map shifted?",
-                      i, what, p.x(), p.y(), lo.x(), hi.x(), lo.y(), hi.y());
+                      "%.1f..%.1f): %s; is the map shifted?",
+                      i, what, p.x(), p.y(), lo.x(), hi.x(), lo.y(), hi.y(),
+                      cfg.placements.empty()
+                          ? "the layout puts starts at y = 16 and goals at y = -16 about the origin"
+                          : "as the scenario places it");
         error = text;
         return false;
       }
@@ -48,14 +52,16 @@ bool check_map(const sim::BoxWorld& world, const sim::CloudWorldReport& report, 
       }
     }
   }
-  // The corridor the UGVs cross: between the outermost lanes (plus a body) and from the goals'
-  // row to the starts'.
-  double x0 = 0.0, x1 = 0.0;
+  // The area the UGVs cross: the box around every start and goal, plus a body.
+  Vec2 c_lo = ugv_start(cfg, 0).p, c_hi = c_lo;
   for (int i = 0; i < ugvs; ++i) {
-    x0 = std::min(x0, ugv_start(i).p.x());
-    x1 = std::max(x1, ugv_start(i).p.x());
+    for (const Vec2& p : {ugv_start(cfg, i).p, ugv_goal(cfg, i)}) {
+      c_lo = c_lo.cwiseMin(p);
+      c_hi = c_hi.cwiseMax(p);
+    }
   }
-  const Vec2 c_lo(x0 - 1.0, ugv_goal(0).y()), c_hi(x1 + 1.0, ugv_start(0).p.y());
+  c_lo -= Vec2(1.0, 0.0);
+  c_hi += Vec2(1.0, 0.0);
   const bool any = std::any_of(world.boxes.begin(), world.boxes.end(), [&](const sim::Box& b) {
     const Vec2 b_lo = b.center - b.half_size, b_hi = b.center + b.half_size;
     return b.reaches(body.band_low_m, body.band_high_m) && (b_hi.array() >= c_lo.array()).all() &&

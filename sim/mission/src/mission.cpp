@@ -362,7 +362,7 @@ std::unique_ptr<Mission> Mission::compose(const MissionConfig& cfg, std::string&
 
   // The UAV (not in the self-perception baseline).
   if (!cfg.self_perception) {
-    p->world->add_uav(uav_start(), p->clocks[0]);
+    p->world->add_uav(cfg.uav_start, p->clocks[0]);
     uav::UavSupervisorConfig uc;
     if (cfg.ablation == Ablation::kNoScheduling)
       uc.scheduler.mode = uav::ScheduleMode::kNoScheduling;
@@ -381,7 +381,7 @@ std::unique_ptr<Mission> Mission::compose(const MissionConfig& cfg, std::string&
   // tasks are a lane of the executor, the UGVs' lanes run side by side on the worker pool.
   p->ugvs.resize(static_cast<std::size_t>(cfg.ugvs));
   for (int i = 0; i < cfg.ugvs; ++i) {
-    p->world->add_ugv(ugv_start(i), p->clocks[static_cast<std::size_t>(i) + 1],
+    p->world->add_ugv(ugv_start(cfg, i), p->clocks[static_cast<std::size_t>(i) + 1],
                       &wheels[static_cast<std::size_t>(i)]);
   }
   if (cfg.self_perception) p->world->enable_ugv_lidars();
@@ -390,12 +390,12 @@ std::unique_ptr<Mission> Mission::compose(const MissionConfig& cfg, std::string&
   const sim::OdometryFrame& map_frame = p->world->odometry_frame();
   for (int i = 0; i < cfg.ugvs; ++i) {
     UgvStack& s = p->ugvs[static_cast<std::size_t>(i)];
-    s.goal = ugv_goal(i);
+    s.goal = ugv_goal(cfg, i);
     ugv::UgvNavConfig nc;
     nc.id = static_cast<RobotId>(i);
     nc.goal = map_frame.to_odometry(s.goal);
     nc.has_start_guess = true;
-    nc.start_guess = map_frame.to_odometry(ugv_start(i));
+    nc.start_guess = map_frame.to_odometry(ugv_start(cfg, i));
     nc.use_rpe_updates = cfg.ablation != Ablation::kNoRpe;
     nc.predictor.use_uncertainty = cfg.ablation != Ablation::kNoUncertainty;
     nc.predictor.horizon_m = cfg.predict_horizon_m;

@@ -72,6 +72,8 @@ bool check(const MissionConfig& cfg, std::string& error) {
   if (cfg.ugvs < 1 || cfg.ugvs > static_cast<int>(limits::kMaxUgvs)) {
     return fail("--ugvs must be in 1.." + std::to_string(limits::kMaxUgvs));
   }
+  if (!cfg.placements.empty() && cfg.placements.size() != static_cast<std::size_t>(cfg.ugvs))
+    return fail("a start and a goal for each of the " + std::to_string(cfg.ugvs) + " UGVs");
   if (!(cfg.max_time_s > 0.0)) return fail("--max-time must be > 0");
   if (!(cfg.predict_horizon_m > 0.0 && cfg.predict_horizon_m <= 20.0))
     return fail("--predict-horizon must be in (0, 20] m");
@@ -119,7 +121,7 @@ bool build_world(const MissionConfig& cfg, sim::BoxWorld& world, std::string& er
     sim::CloudWorldReport report;
     world = sim::box_world_from_points(points, {}, &report);
     std::vector<std::string> found;
-    if (!check_map(world, report, cfg.ugvs, found, error)) {
+    if (!check_map(world, report, cfg, found, error)) {
       error = cfg.map_file + ": " + error;
       return false;
     }
@@ -141,6 +143,13 @@ Vec2 ugv_goal(int i) {
 }
 Vec3 uav_start() {
   return kUavStart;
+}
+Pose2 ugv_start(const MissionConfig& cfg, int i) {
+  return cfg.placements.empty() ? ugv_start(i)
+                                : cfg.placements.at(static_cast<std::size_t>(i)).start;
+}
+Vec2 ugv_goal(const MissionConfig& cfg, int i) {
+  return cfg.placements.empty() ? ugv_goal(i) : cfg.placements.at(static_cast<std::size_t>(i)).goal;
 }
 
 }  // namespace colag::mission

@@ -79,7 +79,7 @@ void summarise(const sim::SimWorld& world, MissionOutcome& out) {
   for (UgvOutcome& o : out.ugvs) {
     o.traj_length_m = world.ugv(o.id).travelled_m();
     o.min_clearance_m = world.min_clearance_m(o.id);
-    o.goal_distance_m = (world.ugv(o.id).pose().p - ugv_goal(o.id)).norm();
+    o.goal_distance_m = (world.ugv(o.id).pose().p - ugv_goal(out.config, o.id)).norm();
     for (const auto& c : world.collisions())
       o.collided = o.collided || c.ugv == o.id || c.other_ugv == o.id;
     if (o.reached) {
@@ -120,6 +120,7 @@ std::string to_json(const MissionOutcome& o, bool include_wall_time) {
   j["world"] = o.config.world.name;
   j["ugv_base"] = hal::can::to_string(o.config.ugv_base);
   j["scenario"] = o.config.scenario == "file" ? o.config.map_file : o.config.scenario;
+  if (!o.config.scenario_file.empty()) j["scenario_file"] = o.config.scenario_file;
   j["ablation"] = to_string(o.config.ablation);
   j["self_perception"] = o.config.self_perception;
   if (!o.warnings.empty()) j["warnings"] = o.warnings;

@@ -12,7 +12,10 @@
 
 namespace colag::mission {
 
-bool check_map(const sim::BoxWorld& world, const sim::CloudWorldReport& report, int ugvs,
-               std::vector<std::string>& warnings, std::string& error);
+struct MissionConfig;
+
+// Against the mission's starts and goals (its placements, or the paper's layout).
+bool check_map(const sim::BoxWorld& world, const sim::CloudWorldReport& report,
+               const MissionConfig& cfg, std::vector<std::string>& warnings, std::string& error);
 
 }  // namespace colag::mission

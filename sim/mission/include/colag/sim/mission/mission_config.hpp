@@ -56,10 +56,20 @@ struct ClockConfig {
   bool any() const { return offset_s != 0.0 || drift_ppm != 0.0 || step_at_s >= 0.0; }
 };
 
+// Where a UGV starts (pose) and where it drives.
+struct UgvPlacement {
+  Pose2 start;
+  Vec2 goal = Vec2::Zero();
+};
+
 struct MissionConfig {
   std::string scenario = "dense";  // "sparse" (40 boxes), "dense" (80 boxes), or "file"
   std::string map_file;            // PCD, when scenario == "file"
   int ugvs = 3;                    // 1 .. limits::kMaxUgvs
+  // Each UGV's start and goal (a scenario file's), `ugvs` of them; empty: the paper's layout.
+  std::vector<UgvPlacement> placements;
+  Vec3 uav_start = Vec3(0.0, 15.0, 1.0);
+  std::string scenario_file;  // where the above came from, if from a file (for the JSON)
   std::uint64_t seed = 1;
   Ablation ablation = Ablation::kNone;
   bool self_perception = false;  // the paper's S.P. baseline: own LiDAR + true pose, no UAV
@@ -85,6 +95,9 @@ bool check(const MissionConfig& cfg, std::string& error);
 Pose2 ugv_start(int i);
 Vec2 ugv_goal(int i);
 Vec3 uav_start();
+// This mission's: its placements, or the paper's layout.
+Pose2 ugv_start(const MissionConfig& cfg, int i);
+Vec2 ugv_goal(const MissionConfig& cfg, int i);
 // The scenario's obstacles: generated from the seed (sparse / dense) or loaded (file: checked
 // against the layout, see map_checks.hpp; what it warns about is added to `warnings`).
 bool build_world(const MissionConfig& cfg, sim::BoxWorld& world, std::string& error,

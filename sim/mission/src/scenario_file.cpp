@@ -1,0 +1,139 @@
+#include "colag/sim/mission/scenario_file.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "colag/board/yaml_reader.hpp"
+#include "colag/common/grid2d.hpp"
+#include "colag/sim/mission/world_file.hpp"
+
+namespace colag::mission {
+
+namespace {
+constexpr double kMinStartSeparation_m = 1.0;  // two bodies (0.3 m radius) and a margin
+constexpr double kEdgeMargin_m = 1.0;          // a UGV's body and its inflation inside the map
+
+bool inside_maps(const Vec2& p) {
+  const GridGeometry2d& g = kWorldGrid2d;
+  const Vec2 lo(g.origin_x() + kEdgeMargin_m, g.origin_y() + kEdgeMargin_m);
+  const Vec2 hi(g.origin_x() + g.cells_x() * g.resolution() - kEdgeMargin_m,
+                g.origin_y() + g.cells_y() * g.resolution() - kEdgeMargin_m);
+  return (p.array() >= lo.array()).all() && (p.array() <= hi.array()).all();
+}
+
+std::string outside_text(const Vec2& p) {
+  const GridGeometry2d& g = kWorldGrid2d;
+  char text[240];
+  std::snprintf(text, sizeof text,
+                "(%.1f, %.1f) is outside what the firmware's maps cover (x %.0f..%.0f, y "
+                "%.0f..%.0f, less %.0f m at the edges); larger sites are not supported yet",
+                p.x(), p.y(), g.origin_x(), g.origin_x() + g.cells_x() * g.resolution(),
+                g.origin_y(), g.origin_y() + g.cells_y() * g.resolution(), kEdgeMargin_m);
+  return text;
+}
+}  // namespace
+
+bool load_scenario_file(const std::string& file, MissionConfig& cfg, std::string& error) {
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(file);
+  } catch (const YAML::Exception& e) {
+    error = file + ": " + e.what();
+    return false;
+  }
+  board::Reader r(file, error);
+  if (!root.IsMap()) {
+    r.fail("(top level)", "expected a mapping (see config/scenarios/README.md)");
+    return false;
+  }
+  r.only(root, "", {"map", "seed", "world", "max_time_s", "uav", "ugvs", "faults"});
+  MissionConfig c = cfg;
+  c.scenario_file = file;
+
+  const YAML::Node map = board::child(root, "map");
+  r.require(root, "", "map");
+  r.only(map, "map", {"generator", "pcd", "units"});
+  std::string generator, pcd, units = "m";
+  r.get(map, "map", "generator", generator);
+  r.get(map, "map", "pcd", pcd);
+  r.get(map, "map", "units", units);
+  if (r.ok() && generator.empty() == pcd.empty())
+    r.fail("map", "give either generator (sparse, dense, pillars) or pcd (a file)");
+  if (r.ok() && !generator.empty()) {
+    if (generator != "sparse" && generator != "dense" && generator != "pillars")
+      r.fail("map.generator", "expected sparse, dense or pillars");
+    c.scenario = generator;
+  }
+  if (r.ok() && !pcd.empty()) {
+    c.scenario = "file";
+    c.map_file = board::relative_to(file, pcd);
+  }
+  if (r.ok() && units != "m")
+    r.fail("map.units", "only m (metres) is supported: convert the map (x, y, z in metres)");
+
+  r.get(root, "", "seed", c.seed, std::uint64_t{0}, ~std::uint64_t{0});
+  r.get(root, "", "max_time_s", c.max_time_s, 1.0, 1e6);
+  std::string world;
+  r.get(root, "", "world", world);
+  if (r.ok() && !world.empty()) {
+    const std::string name =
+        world == "ideal" || world == "field" ? world : board::relative_to(file, world);
+    std::string world_error;
+    if (!world_from_name(name, c.world, world_error)) r.fail("world", world_error);
+  }
+
+  const YAML::Node uav = board::child(root, "uav");
+  r.only(uav, "uav", {"start"});
+  double u[3] = {c.uav_start.x(), c.uav_start.y(), c.uav_start.z()};
+  if (r.vector(uav, "uav", "start", u, 3)) {
+    if (!inside_maps(Vec2(u[0], u[1]))) r.fail("uav.start", outside_text(Vec2(u[0], u[1])));
+    if (!(u[2] >= 0.5 && u[2] <= 10.0)) r.fail("uav.start", "its height must be in 0.5..10 m");
+    c.uav_start = Vec3(u[0], u[1], u[2]);
+  }
+
+  const YAML::Node ugvs = board::child(root, "ugvs");
+  r.require(root, "", "ugvs");
+  if (r.ok() && (!ugvs.IsSequence() || ugvs.size() < 1 || ugvs.size() > limits::kMaxUgvs)) {
+    r.fail("ugvs", "expected a list of 1.." + std::to_string(limits::kMaxUgvs) +
+                       " UGVs, each {start: [x, y, yaw_deg], goal: [x, y]}");
+  }
+  c.placements.clear();
+  for (std::size_t i = 0; r.ok() && i < ugvs.size(); ++i) {
+    const std::string path = "ugvs[" + std::to_string(i) + "]";
+    const YAML::Node ugv = ugvs[i];
+    r.only(ugv, path, {"start", "goal"});
+    r.require(ugv, path, "start");
+    r.require(ugv, path, "goal");
+    double s[3] = {}, g[2] = {};
+    if (!r.vector(ugv, path, "start", s, 3) || !r.vector(ugv, path, "goal", g, 2)) break;
+    UgvPlacement p{{Vec2(s[0], s[1]), s[2] * M_PI / 180.0}, Vec2(g[0], g[1])};
+    if (!inside_maps(p.start.p)) r.fail(path + ".start", outside_text(p.start.p));
+    if (!inside_maps(p.goal)) r.fail(path + ".goal", outside_text(p.goal));
+    for (std::size_t k = 0; r.ok() && k < c.placements.size(); ++k) {
+      const double d = (c.placements[k].start.p - p.start.p).norm();
+      if (d < kMinStartSeparation_m) {
+        char text[160];
+        std::snprintf(text, sizeof text, "%.2f m from ugvs[%zu].start: UGVs start %.0f m apart", d,
+                      k, kMinStartSeparation_m);
+        r.fail(path + ".start", text);
+      }
+    }
+    c.placements.push_back(p);
+  }
+  c.ugvs = static_cast<int>(c.placements.size());
+
+  const YAML::Node faults = board::child(root, "faults");
+  r.only(faults, "faults", {"loss_percent", "latency_ms", "jitter_ms"});
+  double loss = c.faults.loss * 100.0;
+  r.get(faults, "faults", "loss_percent", loss, 0.0, 100.0);
+  c.faults.loss = loss / 100.0;
+  r.get(faults, "faults", "latency_ms", c.faults.latency_ms, 0.0, 10000.0);
+  r.get(faults, "faults", "jitter_ms", c.faults.jitter_ms, 0.0, 10000.0);
+  if (!r.ok()) return false;
+  cfg = c;
+  return true;
+}
+
+}  // namespace colag::mission

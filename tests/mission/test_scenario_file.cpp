@@ -1,0 +1,91 @@
+// Scenario files (sim/mission/scenario_file.hpp): the shipped ones load; a mission flies the
+// starts and goals a file gives; a mistake is refused with the key and the problem.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "colag/sim/mission/mission.hpp"
+#include "colag/sim/mission/scenario_file.hpp"
+
+using namespace colag;
+using namespace colag::mission;
+
+namespace {
+std::string write(const std::string& name, const std::string& text) {
+  std::string path = ::testing::TempDir() + name;
+  std::ofstream(path) << text;
+  return path;
+}
+std::string refusal(const std::string& text) {
+  MissionConfig cfg;
+  std::string error;
+  EXPECT_FALSE(load_scenario_file(write("scenario.yaml", text), cfg, error)) << text;
+  return error;
+}
+}  // namespace
+
+TEST(ScenarioFile, EveryShippedScenarioLoads) {
+  int files = 0;
+  for (const auto& e : std::filesystem::directory_iterator(COLAG_CONFIG_DIR "/scenarios")) {
+    if (e.path().extension() != ".yaml") continue;
+    ++files;
+    MissionConfig cfg;
+    std::string error;
+    EXPECT_TRUE(load_scenario_file(e.path().string(), cfg, error)) << error;
+    EXPECT_EQ(cfg.placements.size(), static_cast<std::size_t>(cfg.ugvs)) << e.path();
+    EXPECT_TRUE(check(cfg, error)) << e.path() << ": " << error;
+  }
+  EXPECT_GE(files, 3);
+}
+
+TEST(ScenarioFile, TheMissionFliesTheFilesStartsAndGoals) {
+  MissionConfig cfg;
+  cfg.max_time_s = 200;
+  std::string error;
+  ASSERT_TRUE(load_scenario_file(COLAG_CONFIG_DIR "/scenarios/crossing.yaml", cfg, error)) << error;
+  ASSERT_EQ(cfg.ugvs, 4);
+  EXPECT_EQ(cfg.scenario, "dense");
+  EXPECT_EQ(cfg.world.name, "field");
+  const std::unique_ptr<Mission> m = Mission::compose(cfg, error);
+  ASSERT_TRUE(m) << error;
+  // Where the world put each UGV, and where its firmware was told to go.
+  EXPECT_LT((m->world().ugv(2).pose().p - Vec2(16, 3)).norm(), 1e-9);
+  EXPECT_NEAR(std::abs(m->world().ugv(2).pose().yaw_rad), M_PI, 1e-9);
+  m->fly();
+  const MissionOutcome o = m->collect();
+  EXPECT_EQ(o.collisions, 0);
+  EXPECT_TRUE(o.all_reached);
+  for (const UgvOutcome& u : o.ugvs)
+    EXPECT_LT(u.goal_distance_m, cfg.goal_tolerance_m);
+  // The two westbound UGVs drove ~32 m along x.
+  EXPECT_GT(o.ugvs[3].traj_length_m, 30.0);
+}
+
+TEST(ScenarioFile, MistakesAreRefusedNamingTheKey) {
+  const std::string dense = "map: {generator: dense}\n";
+  const std::string one = "ugvs:\n  - {start: [0, 16, -90], goal: [0, -16]}\n";
+  EXPECT_NE(refusal(one).find("map: required"), std::string::npos);
+  EXPECT_NE(refusal(dense).find("ugvs: required"), std::string::npos);
+  EXPECT_NE(refusal(dense + one + "ugvz: 1\n").find("ugvz: unknown key"), std::string::npos);
+  EXPECT_NE(refusal("map: {generator: dense, pcd: a.pcd}\n" + one).find("map: give either"),
+            std::string::npos);
+  EXPECT_NE(refusal("map: {generator: hills}\n" + one).find("map.generator"), std::string::npos);
+  EXPECT_NE(refusal("map: {pcd: a.pcd, units: mm}\n" + one).find("map.units"), std::string::npos);
+  EXPECT_NE(refusal(dense + "ugvs:\n  - {start: [0, 16], goal: [0, -16]}\n")
+                .find("ugvs[0].start: expected a list of 3 numbers"),
+            std::string::npos);
+  EXPECT_NE(refusal(dense + "ugvs:\n  - {start: [0, 16, 0], goal: [0, -30]}\n")
+                .find("ugvs[0].goal: (0.0, -30.0) is outside"),
+            std::string::npos);
+  EXPECT_NE(refusal(dense + one + "  - {start: [0.5, 16, -90], goal: [2, -16]}\n")
+                .find("ugvs[1].start: 0.50 m from ugvs[0].start"),
+            std::string::npos);
+  EXPECT_NE(refusal(dense + "ugvs: []\n").find("ugvs: expected a list of 1.."), std::string::npos);
+  EXPECT_NE(refusal(dense + one + "uav: {start: [0, 0, 50]}\n").find("uav.start"),
+            std::string::npos);
+  EXPECT_NE(refusal(dense + one + "faults: {loss_percent: 120}\n").find("faults.loss_percent"),
+            std::string::npos);
+  EXPECT_NE(refusal(dense + one + "world: nowhere.yaml\n").find("world: "), std::string::npos);
+  EXPECT_NE(refusal("- 1\n").find("expected a mapping"), std::string::npos);
+}
