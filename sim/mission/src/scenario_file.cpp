@@ -37,12 +37,7 @@ std::string outside_text(const Vec2& p) {
 
 bool load_scenario_file(const std::string& file, MissionConfig& cfg, std::string& error) {
   YAML::Node root;
-  try {
-    root = YAML::LoadFile(file);
-  } catch (const YAML::Exception& e) {
-    error = file + ": " + e.what();
-    return false;
-  }
+  if (!board::load_yaml_file(file, root, error)) return false;
   board::Reader r(file, error);
   if (!root.IsMap()) {
     r.fail("(top level)", "expected a mapping (see config/scenarios/README.md)");

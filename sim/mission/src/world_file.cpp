@@ -10,12 +10,7 @@ namespace colag::mission {
 
 bool load_world_file(const std::string& file, sim::WorldProfile& out, std::string& error) {
   YAML::Node root;
-  try {
-    root = YAML::LoadFile(file);
-  } catch (const YAML::Exception& e) {
-    error = file + ": " + e.what();
-    return false;
-  }
+  if (!board::load_yaml_file(file, root, error)) return false;
   board::Reader r(file, error);
   r.only(root, "", {"base", "wheels", "lidar", "camera", "uav_odometry", "clocks"});
   std::string base = "field";

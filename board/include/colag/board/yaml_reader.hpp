@@ -18,6 +18,17 @@ inline YAML::Node child(const YAML::Node& node, const char* key) {
   return YAML::Node(YAML::NodeType::Undefined);
 }
 
+// Reads a YAML file into `root`; false with "FILE: what yaml-cpp said" when it cannot.
+inline bool load_yaml_file(const std::string& file, YAML::Node& root, std::string& error) {
+  try {
+    root = YAML::LoadFile(file);
+  } catch (const YAML::Exception& e) {
+    error = file + ": " + e.what();
+    return false;
+  }
+  return true;
+}
+
 // Walks a YAML document, reading typed values by key path and keeping the first error.
 class Reader {
  public:
