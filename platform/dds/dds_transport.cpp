@@ -56,28 +56,16 @@ void DdsTransport::partition_name(RobotId ugv, char* out, std::size_t size) cons
   }
 }
 
-dds_entity_t DdsTransport::publisher(RobotId ugv) {
-  dds_entity_t& pub = ugv == kAnyRobot ? fleet_publisher_ : ugv_publishers_[ugv];
-  if (pub > 0) return pub;
+dds_entity_t DdsTransport::group(RobotId ugv, Groups& groups, CreateGroup create) {
+  dds_entity_t& g = ugv == kAnyRobot ? groups.fleet : groups.ugv[ugv];
+  if (g > 0) return g;
   char name[128];
   partition_name(ugv, name, sizeof name);
   dds_qos_t* qos = dds_create_qos();
   dds_qset_partition1(qos, name);
-  pub = dds_create_publisher(participant_, qos, nullptr);
+  g = create(participant_, qos, nullptr);
   dds_delete_qos(qos);
-  return pub;
-}
-
-dds_entity_t DdsTransport::subscriber(RobotId ugv) {
-  dds_entity_t& sub = ugv == kAnyRobot ? fleet_subscriber_ : ugv_subscribers_[ugv];
-  if (sub > 0) return sub;
-  char name[128];
-  partition_name(ugv, name, sizeof name);
-  dds_qos_t* qos = dds_create_qos();
-  dds_qset_partition1(qos, name);
-  sub = dds_create_subscriber(participant_, qos, nullptr);
-  dds_delete_qos(qos);
-  return sub;
+  return g;
 }
 
 Status DdsTransport::init(const DdsConfig& config) {
@@ -111,7 +99,7 @@ Status DdsTransport::init(const DdsConfig& config) {
     const int writers = config.publishes[i] ? (each_ugv ? config_.ugvs.count : 1) : 0;
     for (int k = 0; k < writers; ++k) {
       const RobotId ugv = each_ugv ? static_cast<RobotId>(first + k) : kAnyRobot;
-      const dds_entity_t pub = publisher(ugv);
+      const dds_entity_t pub = group(ugv, publishers_, dds_create_publisher);
       dds_entity_t& w = writers_[i][each_ugv ? ugv : 0];
       w = pub > 0 ? dds_create_writer(pub, topics_[i], qos, nullptr) : pub;
       if (w < 0) {
@@ -128,7 +116,7 @@ Status DdsTransport::init(const DdsConfig& config) {
 Status DdsTransport::add_reader(msg::Topic topic, RobotId ugv) {
   for (const Reader& r : readers_)
     if (r.topic == topic && r.ugv == ugv) return Status::ok();
-  const dds_entity_t sub = subscriber(ugv);
+  const dds_entity_t sub = group(ugv, subscribers_, dds_create_subscriber);
   if (sub < 0) return fail(sub, "dds_create_subscriber failed");
   dds_qos_t* qos = make_qos(msg::topic_info(topic));
   const dds_entity_t reader = dds_create_reader(sub, topics_[index(topic)], qos, nullptr);

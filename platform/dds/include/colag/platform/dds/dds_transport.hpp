@@ -115,9 +115,14 @@ class DdsTransport final : public Transport {
   void dispatch(msg::Topic topic, const void* sample, TimePoint now);
   dds_qos_t* make_qos(const msg::TopicInfo& info) const;
   Status fail(dds_return_t rc, const char* what);
+  // Publishers (or subscribers), one per partition: the fleet's and each UGV's.
+  struct Groups {
+    dds_entity_t fleet = 0;
+    std::array<dds_entity_t, limits::kMaxUgvs> ugv{};
+  };
+  using CreateGroup = dds_entity_t (*)(dds_entity_t, const dds_qos_t*, const dds_listener_t*);
   // The publisher / subscriber of a partition (kAnyRobot: the fleet's), created on first use.
-  dds_entity_t publisher(RobotId ugv);
-  dds_entity_t subscriber(RobotId ugv);
+  dds_entity_t group(RobotId ugv, Groups& groups, CreateGroup create);
   void partition_name(RobotId ugv, char* out, std::size_t size) const;
   Status add_reader(msg::Topic topic, RobotId ugv);
 
@@ -125,8 +130,7 @@ class DdsTransport final : public Transport {
   dds_entity_t participant_ = 0;
   std::array<dds_entity_t, msg::kTopicCount> topics_{};
   std::array<Writers, msg::kTopicCount> writers_{};
-  dds_entity_t fleet_publisher_ = 0, fleet_subscriber_ = 0;
-  std::array<dds_entity_t, limits::kMaxUgvs> ugv_publishers_{}, ugv_subscribers_{};
+  Groups publishers_, subscribers_;
   StaticVector<Reader, limits::kMaxDdsReaders> readers_;
   StaticVector<Subscription, limits::kMaxSubscriptions> subscriptions_;
   DdsStats stats_;  // what poll() counts (the executor's thread)
