@@ -73,7 +73,7 @@ while (($#)); do
     *) usage ;;
   esac
 done
-[[ $ugvs =~ ^[0-9]+$ ]] && ((ugvs >= 1 && ugvs <= 16)) || { echo "sitl: --ugvs must be 1..16" >&2; exit 2; }
+[[ $ugvs =~ ^[0-9]+$ ]] && ((ugvs >= 1 && ugvs <= 32)) || { echo "sitl: --ugvs must be 1..32" >&2; exit 2; }
 [[ $uav_stack == sim || $uav_stack == px4 ]] || { echo "sitl: --uav-stack must be sim or px4" >&2; exit 2; }
 [[ $ugv_base =~ ^(colag|odrive|agilex_v2)$ ]] || { echo "sitl: --ugv-base must be colag, odrive or agilex_v2" >&2; exit 2; }
 [[ $uav_stack == px4 || ${#px4_fault[@]} -eq 0 ]] || { echo "sitl: PX4 faults need --uav-stack px4" >&2; exit 2; }

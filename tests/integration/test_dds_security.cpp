@@ -12,6 +12,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <thread>
 
@@ -140,10 +141,12 @@ TEST(DdsSecurity, OnlyTheOperatorCommandsAUgvOverRos2) {
 
   ugv::UgvNavConfig config;
   config.id = 1;
-  platform::LoopbackTransport bus{1};
+  // On the heap: a UGV task and a simulated network together outgrow a thread's stack.
+  const auto bus = std::make_unique<platform::LoopbackTransport>(1);
   hal::scripted::ScriptedWheelOdometry odo;
   hal::scripted::RecordingDrive drive;
-  ugv::UgvNavTask task(config, bus, odo, drive);
+  const auto owned = std::make_unique<ugv::UgvNavTask>(config, *bus, odo, drive);
+  ugv::UgvNavTask& task = *owned;
   ugv::UgvRos2Bridge bridge(task);
   board::Ros2Config ros2;
   ros2.enabled = true;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "colag/common/limits.hpp"
 #include "colag/sim/mission/mission.hpp"
 
 using namespace colag;
@@ -79,6 +80,33 @@ TEST(Mission, DenseFiveUgvsAllReachWithoutCollision) {
     EXPECT_GT(u.bytes_in_per_s, 1000.0) << "UGV " << u.id;
     EXPECT_LT(u.bytes_in_per_s, 0.5 * o.uav_bytes_out_per_s) << "UGV " << u.id;
   }
+}
+
+TEST(Mission, ThirtyTwoUgvsAllReachAndEachReceivesAboutWhatOneOfThreeDoes) {
+  // The largest fleet, in the paper's 40 m arena (a second row of lanes behind the first): every
+  // UGV reaches without a collision, and what each one receives does not grow with the fleet
+  // (only with how many others are near it, at most kMaxNearbyUgvs): were every UAV sample
+  // delivered to every UGV, each would take in the UAV's whole output, ten times the 3-UGV
+  // figure.
+  const auto mean_bytes_in = [](const MissionOutcome& o) {
+    double sum = 0.0;
+    for (const UgvOutcome& u : o.ugvs)
+      sum += u.bytes_in_per_s;
+    return sum / static_cast<double>(o.ugvs.size());
+  };
+  MissionConfig cfg;
+  cfg.scenario = "sparse";
+  cfg.seed = 2;
+  cfg.max_time_s = 400;
+  cfg.ugvs = 3;
+  const MissionOutcome three = run(cfg);
+  expect_all_reached_safely(three);
+  cfg.ugvs = static_cast<int>(limits::kMaxUgvs);
+  const MissionOutcome all = run(cfg);
+  expect_all_reached_safely(all);
+  ASSERT_EQ(all.ugvs.size(), limits::kMaxUgvs);
+  EXPECT_LT(mean_bytes_in(all), 1.5 * mean_bytes_in(three));
+  EXPECT_GT(all.uav_bytes_out_per_s, 5.0 * three.uav_bytes_out_per_s);  // the UAV's does grow
 }
 
 TEST(Mission, WithoutRelativePoseUpdatesTheBlindUgvsDoNotMakeIt) {

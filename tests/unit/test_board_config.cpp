@@ -159,7 +159,7 @@ TEST_F(BoardConfig, OnlyWhatTheOperatorMustSayIsRequired) {
 TEST_F(BoardConfig, ErrorsNameTheKeyAndTheProblem) {
   EXPECT_NE(ugv_error("can: {interface: [a, b]}").find("can.interface: expected a string"),
             std::string::npos);
-  EXPECT_NE(ugv_error("robot: {id: 40}").find("robot.id: out of range [0, 15]"), std::string::npos);
+  EXPECT_NE(ugv_error("robot: {id: 40}").find("robot.id: out of range [0, 31]"), std::string::npos);
   EXPECT_NE(ugv_error("wheels: {radius_m: fast}").find("wheels.radius_m: expected a number"),
             std::string::npos);
   EXPECT_NE(ugv_error("wheel: {radius_m: 0.1}").find("wheel: unknown key"), std::string::npos);

@@ -48,14 +48,15 @@ TEST(NearbyRelay, ListsTheUgvsWithinTheRadiusNearestFirstASilentOneAsFarAsItCanH
   EXPECT_EQ(out.ugvs[0].ugv_id, 2);
   EXPECT_EQ(out.ugvs[1].ugv_id, 1);
   EXPECT_EQ(out.ugvs[2].ugv_id, 4);
-  EXPECT_DOUBLE_EQ(out.ugvs[2].silent_s, 20.0);
-  EXPECT_DOUBLE_EQ(out.ugvs[0].silent_s, 0.0);
-  // What the UGV plans with: position, the position's covariance, velocity.
-  EXPECT_DOUBLE_EQ(out.ugvs[0].position_m[1], 5.0);
-  EXPECT_DOUBLE_EQ(out.ugvs[0].covariance_xy[0], 0.01);
-  EXPECT_DOUBLE_EQ(out.ugvs[0].covariance_xy[1], 0.002);
-  EXPECT_DOUBLE_EQ(out.ugvs[0].covariance_xy[2], 0.03);
-  EXPECT_DOUBLE_EQ(out.ugvs[0].velocity_mps, 0.4);
+  EXPECT_FLOAT_EQ(out.ugvs[2].silent_s, 20.0F);
+  EXPECT_FLOAT_EQ(out.ugvs[0].silent_s, 0.0F);
+  // What the UGV plans with: position, the position's covariance, velocity (single precision
+  // on the wire).
+  EXPECT_FLOAT_EQ(out.ugvs[0].position_m[1], 5.0F);
+  EXPECT_FLOAT_EQ(out.ugvs[0].covariance_xy[0], 0.01F);
+  EXPECT_FLOAT_EQ(out.ugvs[0].covariance_xy[1], 0.002F);
+  EXPECT_FLOAT_EQ(out.ugvs[0].covariance_xy[2], 0.03F);
+  EXPECT_FLOAT_EQ(out.ugvs[0].velocity_mps, 0.4F);
 
   // A crowd: only the nearest kMaxNearbyUgvs, and never the UGV itself.
   for (std::size_t i = 1; i < ugvs.size(); ++i)

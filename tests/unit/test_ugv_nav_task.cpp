@@ -424,7 +424,7 @@ TEST(UgvNavTask, RejectsAndCountsBadMessagesWithoutHarm) {
   msg::NearbyUgv& bad_velocity = nearby.ugvs[1];  // right ahead: its velocity would sweep it away
   bad_velocity.ugv_id = 3;
   bad_velocity.position_m[0] = 2.0;
-  bad_velocity.velocity_mps = std::numeric_limits<double>::infinity();
+  bad_velocity.velocity_mps = std::numeric_limits<float>::infinity();
   ASSERT_TRUE(rig.bus->publish(nearby));
   rig.ex.run_until(rig.ex.now() + 200ms);
   EXPECT_EQ(rig.ugv->health().rpe_rejected, 2u);
@@ -493,7 +493,7 @@ TEST(UgvNavTask, ASilentUgvStaysAnObstacleThatGrowsUntilItIsHeardAgain) {
     s.mode = msg::UgvMode::kDriving;
     s.position_m[0] = 5.0;  // 2 m beside the way to the goal
     s.position_m[1] = 2.0;
-    s.covariance_xy[0] = s.covariance_xy[2] = 1e-4;
+    s.covariance_xy[0] = s.covariance_xy[2] = 1e-4F;
     ASSERT_TRUE(rig.bus->publish(m));
   };
   other_status();  // heard once, then silent
@@ -533,7 +533,7 @@ TEST(UgvNavTask, AUgvLeftOutOfTheUavsNewerListIsForgotten) {
       s.ugv_id = 1;
       s.mode = msg::UgvMode::kWaitingForSupport;
       s.position_m[0] = 8.0;  // standing on its goal
-      s.covariance_xy[0] = s.covariance_xy[2] = 1e-4;
+      s.covariance_xy[0] = s.covariance_xy[2] = 1e-4F;
     }
     ASSERT_TRUE(rig.bus->publish(m));
   };

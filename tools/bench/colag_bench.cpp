@@ -14,6 +14,7 @@
 #include "bench_safety.hpp"
 #include "bench_speed.hpp"
 #include "bench_tables.hpp"
+#include "colag/common/limits.hpp"
 #include "colag/sim/host_program.hpp"
 #include "tsptw_instance.hpp"
 
@@ -88,7 +89,8 @@ int run(int argc, char** argv) {
   speed->add_option("--runs", popt.runs, "runs, one after the other")->check(CLI::Range(1, 100));
   speed->add_option("--scenario", popt.scenario, "sparse, dense or pillars")
       ->check(CLI::IsMember({"sparse", "dense", "pillars"}));
-  speed->add_option("--ugvs", popt.ugvs, "UGVs")->check(CLI::Range(1, 16));
+  speed->add_option("--ugvs", popt.ugvs, "UGVs")
+      ->check(CLI::Range(1, static_cast<int>(limits::kMaxUgvs)));
   speed->add_option("--seed", popt.seed, "seed")->check(CLI::Range(0, 2147483647));
   speed->add_option("--target", popt.target, "real-time factor the median should reach")
       ->check(sim::positive_up_to(1e6));

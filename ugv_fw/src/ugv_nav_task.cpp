@@ -376,7 +376,7 @@ void UgvNavTask::read_other_ugvs(TimePoint now) {
       OtherUgv& o = others_[u.ugv_id];
       o.known = true;
       o.heard = now - std::chrono::duration_cast<Duration>(
-                          std::chrono::duration<double>(std::min(u.silent_s, 1e6)));
+                          std::chrono::duration<double>(std::min(double{u.silent_s}, 1e6)));
       o.state = u;
       o.state.stamp = fleet_.to_local(u.stamp);
     }
@@ -394,11 +394,13 @@ void UgvNavTask::collect_others(TimePoint now) {
     // Where it is now, having kept its reported velocity since its status was stamped (for half
     // a second at most: a silent robot may have stopped).
     const msg::NearbyUgv& u = o.state;
-    const Vec2 v = u.velocity_mps * Vec2(std::cos(u.yaw_rad), std::sin(u.yaw_rad));
+    const double speed = u.velocity_mps, yaw = u.yaw_rad;
+    const Vec2 v = speed * Vec2(std::cos(yaw), std::sin(yaw));
     const double age = std::clamp(to_seconds(now - u.stamp), 0.0, 0.5);
     const Vec2 p = Vec2(u.position_m[0], u.position_m[1]) + age * v;
     Mat2 cov;
-    cov << u.covariance_xy[0], u.covariance_xy[1], u.covariance_xy[1], u.covariance_xy[2];
+    const double cxx = u.covariance_xy[0], cxy = u.covariance_xy[1], cyy = u.covariance_xy[2];
+    cov << cxx, cxy, cxy, cyy;
     // Its own 3 sigma (capped: a robot lost on its own is not a wall), then as far as it can
     // have driven since it was last heard (our clock: another board's stamps do not tell).
     const double silent_s = std::max(to_seconds(now - o.heard), 0.0);

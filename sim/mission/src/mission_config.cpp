@@ -54,12 +54,20 @@ bool parse_ablation(const std::string& s, Ablation& out) {
 namespace {
 
 const Vec3 kUavStart{0.0, 15.0, 1.0};
-constexpr double kStartY = 16.0, kGoalY = -16.0;
+constexpr int kPaperLanes = 17;  // x = 0, -2, 2, ..., -16, 16
 
-// UGV i's lane: x = 0, -2, 2, -4, 4, ...
+// UGV i's lane. The paper's layout: x = 0, -2, 2, -4, 4, ... from y = 16 to y = -16. A larger
+// fleet fills the odd lanes x = -1, 1, -3, 3, ... in a second row behind the first, from
+// y = 18 to y = -18 (it drives between the first row's UGVs at the start and the goal).
 double lane_x(int i) {
-  return (i % 2 == 1 ? -2.0 : 2.0) *
-         ((i + 1) / 2);  // NOLINT(bugprone-integer-division): the lane number
+  // NOLINTBEGIN(bugprone-integer-division): lane numbers
+  if (i < kPaperLanes) return (i % 2 == 1 ? -2.0 : 2.0) * ((i + 1) / 2);
+  const int k = i - kPaperLanes;
+  return (k % 2 == 0 ? -1.0 : 1.0) * (2 * (k / 2) + 1);
+  // NOLINTEND(bugprone-integer-division)
+}
+double start_y(int i) {
+  return i < kPaperLanes ? 16.0 : 18.0;
 }
 
 }  // namespace
@@ -136,10 +144,10 @@ bool build_world(const MissionConfig& cfg, sim::BoxWorld& world, std::string& er
 }
 
 Pose2 ugv_start(int i) {
-  return {Vec2(lane_x(i), kStartY), -M_PI / 2};
+  return {Vec2(lane_x(i), start_y(i)), -M_PI / 2};
 }
 Vec2 ugv_goal(int i) {
-  return Vec2(lane_x(i), kGoalY);
+  return Vec2(lane_x(i), -start_y(i));
 }
 Vec3 uav_start() {
   return kUavStart;

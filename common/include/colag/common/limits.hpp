@@ -9,7 +9,7 @@
 namespace colag::limits {
 
 // --- Robots -----------------------------------------------------------------------------------
-inline constexpr std::size_t kMaxUgvs = 16;
+inline constexpr std::size_t kMaxUgvs = 32;
 inline constexpr std::size_t kMaxRobots = kMaxUgvs + 1;  // + the UAV
 inline constexpr std::size_t kMaxSupportRequests = 64;   // live CollisionInfo requests at the UAV
 inline constexpr std::size_t kMaxNearbyUgvs = 12;        // other UGVs the UAV relays to one UGV
@@ -54,14 +54,15 @@ inline constexpr std::size_t kClockStepRun = 4;      // unexplained exchanges he
 
 // --- Runtime -----------------------------------------------------------------------------------
 // A board runs a handful of tasks; the host simulator puts a whole fleet in one table
-// (16 UGVs x 2 loops + the UAV's 4 + world, transport, monitor).
-inline constexpr std::size_t kMaxTasksPerExecutor = 48;
-inline constexpr std::size_t kMaxSubscriptions = 128;        // per transport instance
-inline constexpr std::size_t kLoopbackMaxInFlight = 512;     // samples held by the loopback
-inline constexpr std::size_t kLoopbackMaxDeliveries = 4096;  // (sample, subscriber) pairs pending
+// (32 UGVs x 2 loops + the UAV's 4 + world, transport, monitor).
+inline constexpr std::size_t kMaxTasksPerExecutor = 2 * kMaxUgvs + 16;
+inline constexpr std::size_t kMaxSubscriptions = 8 * kMaxUgvs;         // per transport instance
+inline constexpr std::size_t kLoopbackMaxInFlight = 16 * kMaxUgvs;     // samples held
+inline constexpr std::size_t kLoopbackMaxDeliveries = 256 * kMaxUgvs;  // (sample, reader) pending
 inline constexpr std::size_t kDefaultReaderDepth = 8;
 inline constexpr std::size_t kLaneOutboxSamples = 8;  // one simulated robot's samples per instant
-inline constexpr std::size_t kDdsOutboxDepth = 64;    // samples awaiting the DDS writer thread
+// The UAV's scheduling step publishes a nearby list and a patch for each UGV at once.
+inline constexpr std::size_t kDdsOutboxDepth = 4 * kMaxUgvs;  // samples awaiting the writer thread
 // DDS readers of one participant: a listener of every per-UGV topic reads each UGV's partition.
 inline constexpr std::size_t kMaxDdsReaders = 8 * kMaxUgvs;
 inline constexpr std::size_t kRos2CommandQueue = 8;  // ROS 2 commands awaiting a UGV's step

@@ -13,17 +13,20 @@ namespace colag::msg {
 
 // What a UGV needs of another UGV to plan around it: from that UGV's latest status.
 struct NearbyUgv {
+  // Single precision (48 bytes on the wire instead of 96: a UGV's list is most of its traffic
+  // in a crowded fleet). float32 holds a position 1 km away to 0.06 mm, far below the pose's
+  // own uncertainty.
   TimePoint stamp;  // the status's stamp (fleet time)
   RobotId ugv_id = 0;
   UgvMode mode = UgvMode::kWaitingForInit;
-  double position_m[2] = {};
-  double yaw_rad = 0.0;
-  double covariance_xy[3] = {};  // (xx, xy, yy) of its position, m^2
-  double velocity_mps = 0.0;
-  double yaw_rate_radps = 0.0;
+  float position_m[2] = {};
+  float yaw_rad = 0.0F;
+  float covariance_xy[3] = {};  // (xx, xy, yy) of its position, m^2
+  float velocity_mps = 0.0F;
+  float yaw_rate_radps = 0.0F;
   // How long before this message's stamp the UAV last heard it (the UAV's clock): a UGV that
   // went silent may have driven on since, at its speed limit.
-  double silent_s = 0.0;
+  float silent_s = 0.0F;
   friend bool operator==(const NearbyUgv&, const NearbyUgv&) = default;
 };
 COLAG_MESSAGE_FIELDS(NearbyUgv, stamp, ugv_id, mode, position_m, yaw_rad, covariance_xy,

@@ -47,15 +47,16 @@ void fill_nearby(RobotId to, const Ugvs& ugvs, TimePoint now, const NearbyRelayC
     n.stamp = u.status.stamp;
     n.ugv_id = id;
     n.mode = u.status.mode;
-    n.position_m[0] = u.status.position_m[0];
-    n.position_m[1] = u.status.position_m[1];
-    n.yaw_rad = u.status.yaw_rad;
-    n.covariance_xy[0] = u.status.covariance[0];
-    n.covariance_xy[1] = u.status.covariance[1];
-    n.covariance_xy[2] = u.status.covariance[4];
-    n.velocity_mps = u.status.velocity_mps;
-    n.yaw_rate_radps = u.status.yaw_rate_radps;
-    n.silent_s = std::max(to_seconds(now - u.heard), 0.0);
+    const auto f = [](double v) { return static_cast<float>(v); };
+    n.position_m[0] = f(u.status.position_m[0]);
+    n.position_m[1] = f(u.status.position_m[1]);
+    n.yaw_rad = f(u.status.yaw_rad);
+    n.covariance_xy[0] = f(u.status.covariance[0]);
+    n.covariance_xy[1] = f(u.status.covariance[1]);
+    n.covariance_xy[2] = f(u.status.covariance[4]);
+    n.velocity_mps = f(u.status.velocity_mps);
+    n.yaw_rate_radps = f(u.status.yaw_rate_radps);
+    n.silent_s = f(std::max(to_seconds(now - u.heard), 0.0));
   }
 }
 
