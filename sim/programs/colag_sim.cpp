@@ -88,9 +88,10 @@ int run(int argc, char** argv) {
   std::string map_file, ablation = "none", json_path, png_path, mcap_path;
   bool quiet = false, verbose = false;
   auto* scenario = app.add_option("--scenario", cfg.scenario,
-                                  "generated map: sparse (40 boxes), dense (80) or pillars (80, "
-                                  "0.2-0.5 m wide, 0.6-1.2 m tall)")
-                       ->check(CLI::IsMember({"sparse", "dense", "pillars"}));
+                                  "generated map: sparse (40 boxes), dense (80), pillars (80, "
+                                  "0.2-0.5 m wide, 0.6-1.2 m tall) or rooms (3 x 3 rooms, walls "
+                                  "with doorways, 16 boxes of furniture)")
+                       ->check(CLI::IsMember({"sparse", "dense", "pillars", "rooms"}));
   auto* map_opt = app.add_option("--map", map_file, "a PCD map instead (ascii or binary; x y z)")
                       ->excludes(scenario)
                       ->check(CLI::ExistingFile);

@@ -88,4 +88,36 @@ TEST(ScenarioFile, MistakesAreRefusedNamingTheKey) {
             std::string::npos);
   EXPECT_NE(refusal(dense + one + "world: nowhere.yaml\n").find("world: "), std::string::npos);
   EXPECT_NE(refusal("- 1\n").find("expected a mapping"), std::string::npos);
+  // A generator's parameters: only its own, in range.
+  EXPECT_NE(refusal("map: {generator: dense, rooms: [2, 2]}\n" + one).find("map.rooms: not a"),
+            std::string::npos);
+  EXPECT_NE(refusal("map: {generator: rooms, boxes: 10}\n" + one).find("map.boxes: not a"),
+            std::string::npos);
+  EXPECT_NE(refusal("map: {generator: rooms, rooms: [2.5, 2]}\n" + one).find("map.rooms"),
+            std::string::npos);
+  EXPECT_NE(refusal("map: {generator: rooms, door_m: 0.5}\n" + one).find("map.door_m"),
+            std::string::npos);
+  EXPECT_NE(refusal("map: {generator: sparse, boxes: 0}\n" + one).find("map.boxes"),
+            std::string::npos);
+}
+
+TEST(ScenarioFile, GeneratorParametersReachTheMap) {
+  const std::string one = "ugvs:\n  - {start: [0, 16, -90], goal: [0, -16]}\n";
+  MissionConfig cfg;
+  std::string error;
+  ASSERT_TRUE(load_scenario_file(
+      write("rooms.yaml",
+            "map: {generator: rooms, rooms: [2, 4], door_m: 2, furniture: 5}\n" + one),
+      cfg, error))
+      << error;
+  sim::BoxWorld world;
+  ASSERT_TRUE(build_world(cfg, world, error)) << error;
+  // 2 x 4 rooms: 1 x 4 + 3 x 2 wall segments, each two pieces; and 5 pieces of furniture.
+  EXPECT_EQ(world.boxes.size(), 2u * 10u + 5u);
+  cfg = MissionConfig{};
+  ASSERT_TRUE(load_scenario_file(write("boxes.yaml", "map: {generator: sparse, boxes: 12}\n" + one),
+                                 cfg, error))
+      << error;
+  ASSERT_TRUE(build_world(cfg, world, error)) << error;
+  EXPECT_EQ(world.boxes.size(), 12u);
 }

@@ -87,8 +87,8 @@ int run(int argc, char** argv) {
       "speed", "the real-time factor of one mission (default dense, 7 UGVs, seed 1), N runs");
   programs::SpeedOptions popt;
   speed->add_option("--runs", popt.runs, "runs, one after the other")->check(CLI::Range(1, 100));
-  speed->add_option("--scenario", popt.scenario, "sparse, dense or pillars")
-      ->check(CLI::IsMember({"sparse", "dense", "pillars"}));
+  speed->add_option("--scenario", popt.scenario, "sparse, dense, pillars or rooms")
+      ->check(CLI::IsMember({"sparse", "dense", "pillars", "rooms"}));
   speed->add_option("--ugvs", popt.ugvs, "UGVs")
       ->check(CLI::Range(1, static_cast<int>(limits::kMaxUgvs)));
   speed->add_option("--seed", popt.seed, "seed")->check(CLI::Range(0, 2147483647));

@@ -112,10 +112,21 @@ bool build_world(const MissionConfig& cfg, sim::BoxWorld& world, std::string& er
                  std::vector<std::string>* warnings) {
   if (cfg.scenario == "sparse" || cfg.scenario == "dense" || cfg.scenario == "pillars") {
     sim::MapGenConfig gen;
-    gen.boxes = cfg.scenario == "sparse" ? 40 : 80;
+    gen.boxes = cfg.boxes > 0 ? cfg.boxes : cfg.scenario == "sparse" ? 40 : 80;
     gen.pillars = cfg.scenario == "pillars";  // 80 pillars, 0.2-0.5 m wide, 0.6-1.2 m tall
     gen.seed = cfg.seed;
     auto w = sim::generate_box_world(gen);
+    if (!w) {
+      error = w.status().message();
+      return false;
+    }
+    world = w.value();
+    return true;
+  }
+  if (cfg.scenario == "rooms") {
+    sim::RoomGenConfig gen = cfg.rooms;
+    gen.seed = cfg.seed;
+    auto w = sim::generate_room_world(gen);
     if (!w) {
       error = w.status().message();
       return false;
@@ -139,7 +150,7 @@ bool build_world(const MissionConfig& cfg, sim::BoxWorld& world, std::string& er
     }
     return true;
   }
-  error = "unknown scenario '" + cfg.scenario + "' (sparse, dense, pillars, or a map file)";
+  error = "unknown scenario '" + cfg.scenario + "' (sparse, dense, pillars, rooms, or a map file)";
   return false;
 }
 

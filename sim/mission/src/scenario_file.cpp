@@ -33,6 +33,38 @@ std::string outside_text(const Vec2& p) {
                 g.origin_y(), g.origin_y() + g.cells_y() * g.resolution(), kEdgeMargin_m);
   return text;
 }
+// A generator's parameters: `boxes` for the box and pillar fields; `rooms: [x, y]`, `door_m`
+// and `furniture` for rooms. Each only with its generator.
+void read_generator_parameters(board::Reader& r, const YAML::Node& map, MissionConfig& c) {
+  const bool rooms = c.scenario == "rooms";
+  const bool field = c.scenario == "sparse" || c.scenario == "dense" || c.scenario == "pillars";
+  for (const char* key : {"boxes", "rooms", "door_m", "furniture"}) {
+    if (!r.ok() || !map[key]) continue;
+    if ((std::string(key) == "boxes" && !field) || (std::string(key) != "boxes" && !rooms))
+      r.fail(std::string("map.") + key, std::string("not a parameter of this map (") +
+                                            (field   ? "boxes"
+                                             : rooms ? "rooms, door_m, furniture"
+                                                     : "none for a PCD") +
+                                            ")");
+  }
+  int boxes = 0;
+  r.get(map, "map", "boxes", boxes, 1, 400);
+  c.boxes = static_cast<std::size_t>(boxes);
+  if (double grid[2] = {}; r.ok() && r.vector(map, "map", "rooms", grid, 2)) {
+    const auto whole = [](double v) { return v >= 1 && v <= 8 && v == std::floor(v); };
+    if (!whole(grid[0]) || !whole(grid[1])) {
+      r.fail("map.rooms", "expected [x, y]: rooms along x and y, each 1..8");
+    } else {
+      c.rooms.rooms_x = static_cast<int>(grid[0]);
+      c.rooms.rooms_y = static_cast<int>(grid[1]);
+    }
+  }
+  r.get(map, "map", "door_m", c.rooms.door_m, 1.0, 5.0);
+  int furniture = static_cast<int>(c.rooms.furniture);
+  r.get(map, "map", "furniture", furniture, 0, 200);
+  c.rooms.furniture = static_cast<std::size_t>(furniture);
+}
+
 }  // namespace
 
 bool load_scenario_file(const std::string& file, MissionConfig& cfg, std::string& error) {
@@ -49,18 +81,20 @@ bool load_scenario_file(const std::string& file, MissionConfig& cfg, std::string
 
   const YAML::Node map = board::child(root, "map");
   r.require(root, "", "map");
-  r.only(map, "map", {"generator", "pcd", "units"});
+  r.only(map, "map", {"generator", "pcd", "units", "boxes", "rooms", "door_m", "furniture"});
   std::string generator, pcd, units = "m";
   r.get(map, "map", "generator", generator);
   r.get(map, "map", "pcd", pcd);
   r.get(map, "map", "units", units);
   if (r.ok() && generator.empty() == pcd.empty())
-    r.fail("map", "give either generator (sparse, dense, pillars) or pcd (a file)");
+    r.fail("map", "give either generator (sparse, dense, pillars, rooms) or pcd (a file)");
   if (r.ok() && !generator.empty()) {
-    if (generator != "sparse" && generator != "dense" && generator != "pillars")
-      r.fail("map.generator", "expected sparse, dense or pillars");
+    if (generator != "sparse" && generator != "dense" && generator != "pillars" &&
+        generator != "rooms")
+      r.fail("map.generator", "expected sparse, dense, pillars or rooms");
     c.scenario = generator;
   }
+  read_generator_parameters(r, map, c);
   if (r.ok() && !pcd.empty()) {
     c.scenario = "file";
     c.map_file = board::relative_to(file, pcd);

@@ -10,6 +10,7 @@
 #include "colag/common/geometry.hpp"
 #include "colag/hal/can/base_config.hpp"
 #include "colag/sim/world/box_world.hpp"
+#include "colag/sim/world/room_world.hpp"
 #include "colag/sim/world/world_profile.hpp"
 
 namespace colag::mission {
@@ -63,9 +64,13 @@ struct UgvPlacement {
 };
 
 struct MissionConfig {
-  std::string scenario = "dense";  // "sparse" (40 boxes), "dense" (80 boxes), or "file"
-  std::string map_file;            // PCD, when scenario == "file"
-  int ugvs = 3;                    // 1 .. limits::kMaxUgvs
+  // "sparse" (40 boxes), "dense" (80 boxes), "pillars" (80), "rooms" (walls with doorways and
+  // furniture: `rooms`), or "file"
+  std::string scenario = "dense";
+  std::string map_file;      // PCD, when scenario == "file"
+  std::size_t boxes = 0;     // boxes or pillars of a generated field; 0: the scenario's number
+  sim::RoomGenConfig rooms;  // "rooms" (its seed is the mission's)
+  int ugvs = 3;              // 1 .. limits::kMaxUgvs
   // Each UGV's start and goal (a scenario file's), `ugvs` of them; empty: the paper's layout.
   std::vector<UgvPlacement> placements;
   Vec3 uav_start = Vec3(0.0, 15.0, 1.0);
