@@ -2,7 +2,8 @@
 # Software in the loop: the simulated world (colag_world) and the robots' unchanged firmware as
 # separate processes — uav_fw (robot.hal: sim) and one ugv_fw per UGV (can.interface: sim) —
 # talking only over Cyclone DDS.
-#   scripts/sitl.sh [--ugvs N] [--scenario sparse|dense] [--seed S] [--max-time S]
+#   scripts/sitl.sh [--ugvs N] [--scenario sparse|dense|pillars|rooms | --scenario-file F]
+#                   [--seed S] [--max-time S]
 #                   [--world ideal|field|FILE] [--json OUT] [--netns] [--loss PCT] [--domain D] [--build DIR]
 #                   [--time-scale X] [--kill-ugv I@T [--restart-after S]]
 #                   [--uav-stack sim|px4 [--px4-release R] [--px4-silent-at T | --px4-failsafe-at T |
@@ -11,6 +12,9 @@
 # build/sitl/run-<pid>/metrics.json), stops every process by PID, prints a summary, and exits 0 when
 # every UGV reached its goal with no collision (1 otherwise, 2 on a usage or set-up error, 77
 # when --netns cannot work on this machine: not root, no iproute2/nftables, no namespaces).
+#   --scenario-file F  a scenario file (colag_sim's, config/scenarios/README.md): the map, each
+#               UGV's start and goal (each ugv.yaml gets its goal and start guess), the world;
+#               --seed, --max-time and --world given as well override it; not with --ugvs.
 #   --world W   the world's profile (colag_sim's --world; default ideal): field makes the wheels,
 #               the UAV's odometry, LiDAR and camera what real ones are; uav.yaml gets the world's
 #               LiDAR pattern and camera view (colag_world --print-uav-sensors). Each robot reads
@@ -47,15 +51,18 @@ cd "$(dirname "$0")/.."
 
 ugvs=3 scenario=dense seed=1 max_time=400 json="" netns=0 loss=0 scale=1
 build=build/host domain="" kill_ugv="" restart_after="" world_name=ideal
+scenario_file="" given=()  # given: --ugvs/--seed/--max-time/--world as typed (with a scenario file)
 uav_stack=sim px4_release=1.16 px4_fault=() ugv_base=colag ros2=0 mcap=""
-usage() { sed -n '2,42p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
+usage() { awk 'NR > 1 && !/^#/ {exit} NR > 1 {sub(/^# ?/, ""); print}' "$0"; exit 2; }
 while (($#)); do
   case "$1" in
-    --ugvs) ugvs=$2; shift 2 ;;
+    --ugvs) ugvs=$2; given+=(--ugvs "$2"); shift 2 ;;
     --scenario) scenario=$2; shift 2 ;;
-    --seed) seed=$2; shift 2 ;;
-    --world) world_name=$2; [[ $2 == ideal || $2 == field || $2 == /* ]] || world_name=$caller/$2; shift 2 ;;
-    --max-time) max_time=$2; shift 2 ;;
+    --scenario-file) scenario_file=$2; [[ $2 == /* ]] || scenario_file=$caller/$2; shift 2 ;;
+    --seed) seed=$2; given+=(--seed "$2"); shift 2 ;;
+    --world) world_name=$2; [[ $2 == ideal || $2 == field || $2 == /* ]] || world_name=$caller/$2
+             given+=(--world "$world_name"); shift 2 ;;
+    --max-time) max_time=$2; given+=(--max-time "$2"); shift 2 ;;
     --json) json=$2; shift 2 ;;
     --netns) netns=1; shift ;;
     --loss) loss=$2; shift 2 ;;
@@ -79,6 +86,21 @@ done
 [[ $uav_stack == px4 || ${#px4_fault[@]} -eq 0 ]] || { echo "sitl: PX4 faults need --uav-stack px4" >&2; exit 2; }
 [[ $loss =~ ^[0-9]+$ ]] && ((loss <= 100)) || { echo "sitl: --loss must be 0..100" >&2; exit 2; }
 ((loss == 0 || netns)) || { echo "sitl: --loss needs --netns (loss is injected per namespace)" >&2; exit 2; }
+for p in colag_world uav_fw ugv_fw; do
+  [ -x "$build/bin/$p" ] || { echo "sitl: $build/bin/$p missing: build the host preset first" >&2; exit 2; }
+done
+# The mission as colag_world reads it, and each UGV's start and goal from it (one line each:
+# id x y yaw goal_x goal_y): the world and the UGVs' configurations cannot disagree.
+if [ -n "$scenario_file" ]; then
+  mission_args=(--scenario-file "$scenario_file" "${given[@]}")
+  scenario=$(basename "$scenario_file")
+else
+  mission_args=(--scenario "$scenario" --ugvs "$ugvs" --seed "$seed" --max-time "$max_time"
+                --world "$world_name")
+fi
+placements=$("$build/bin/colag_world" "${mission_args[@]}" --print-placements) ||
+  { echo "sitl: the mission: see above" >&2; exit 2; }
+ugvs=$(wc -l <<<"$placements")
 number='^[0-9]+([.][0-9]+)?$'
 if [ -n "$kill_ugv" ]; then
   [[ $kill_ugv =~ ^([0-9]+)@([0-9]+([.][0-9]+)?)$ ]] && ((BASH_REMATCH[1] < ugvs)) ||
@@ -87,9 +109,6 @@ if [ -n "$kill_ugv" ]; then
 fi
 [ -z "$restart_after" ] || { [[ $restart_after =~ $number ]] && [ -n "$kill_ugv" ]; } ||
   { echo "sitl: --restart-after wants seconds, with --kill-ugv" >&2; exit 2; }
-for p in colag_world uav_fw ugv_fw; do
-  [ -x "$build/bin/$p" ] || { echo "sitl: $build/bin/$p missing: build the host preset first" >&2; exit 2; }
-done
 if ((netns)); then
   [ "$(id -u)" -eq 0 ] || { echo "sitl: --netns needs root (network namespaces)" >&2; exit 77; }
   command -v ip >/dev/null && command -v nft >/dev/null ||
@@ -133,7 +152,6 @@ else
   export CYCLONEDDS_URI='<General><Interfaces><NetworkInterface name="lo"/></Interfaces></General>'
 fi
 
-lane_x() { local i=$1; echo $(( (i % 2 == 1 ? -2 : 2) * ((i + 1) / 2) )); }
 cat >"$run/uav.yaml" <<YAML
 robot: {id: 0, hal: $uav_stack}
 dds: {domain: $domain}
@@ -144,19 +162,18 @@ if ((ros2)); then echo "ros2: {enabled: true}" >>"$run/uav.yaml"; fi
 # described as on a board.
 stack_args=(--uav-stack "$uav_stack" --ugv-base "$ugv_base")
 [[ $uav_stack == sim ]] || stack_args+=(--px4-release "$px4_release" "${px4_fault[@]}")
-"$build/bin/colag_world" --world "$world_name" --domain "$domain" "${stack_args[@]}" \
+"$build/bin/colag_world" "${mission_args[@]}" --domain "$domain" "${stack_args[@]}" \
   --print-uav-sensors >>"$run/uav.yaml" ||
   { echo "sitl: --world $world_name: see above" >&2; exit 2; }
-for ((i = 0; i < ugvs; ++i)); do
-  x=$(lane_x "$i")
+while read -r i x y yaw gx gy; do
   cat >"$run/ugv$i.yaml" <<YAML
-robot: {id: $i, goal: [$x, -16.0], start_guess: [$x, 16.0, -1.5707963], state_file: $run/ugv$i.state}
+robot: {id: $i, goal: [$gx, $gy], start_guess: [$x, $y, $yaw], state_file: $run/ugv$i.state}
 dds: {domain: $domain}
 realtime: {fifo_priority: 0, lock_memory: false}
 can: {interface: sim, protocol: $ugv_base}
 YAML
   if ((ros2)); then echo "ros2: {enabled: true}" >>"$run/ugv$i.yaml"; fi
-done
+done <<<"$placements"
 
 pids=() namespaces=()
 ns_of=()  # namespace of each robot (empty: none)
@@ -231,10 +248,10 @@ in_ns() {  # namespace command...
 # A killed robot is silent until it is started again (and found by DDS discovery).
 silence=5
 [ -z "$kill_ugv" ] || silence=$(awk -v r="${restart_after:-1e6}" 'BEGIN {print r + 30}')
-echo "sitl: $scenario, $ugvs UGVs, seed $seed, $world_name world, UAV on $uav_stack$([[ $uav_stack == px4 ]] && echo " $px4_release"), time x$scale, DDS domain $domain (sim link $((domain + 1)))$( ((netns)) && echo ", one network namespace per robot")$( ((loss)) && echo ", $loss % loss")"
+echo "sitl: $scenario, $ugvs UGVs, $([ -n "$scenario_file" ] && echo "seed and world from the file" || echo "seed $seed, $world_name world"), UAV on $uav_stack$([[ $uav_stack == px4 ]] && echo " $px4_release"), time x$scale, DDS domain $domain (sim link $((domain + 1)))$( ((netns)) && echo ", one network namespace per robot")$( ((loss)) && echo ", $loss % loss")"
 echo "sitl: logs and configs in $run"
-in_ns "$hub" "$build/bin/colag_world" --scenario "$scenario" --ugvs "$ugvs" --seed "$seed" --world "$world_name" \
-  --domain "$domain" --max-time "$max_time" --json "$json" --time-scale "$scale" \
+in_ns "$hub" "$build/bin/colag_world" "${mission_args[@]}" \
+  --domain "$domain" --json "$json" --time-scale "$scale" \
   --max-silence "$silence" "${stack_args[@]}" >"$run/world.log" 2>&1 &
 world=$!
 pids+=("$world")

@@ -30,6 +30,7 @@
 #include "colag/sim/bridge/world_bridge.hpp"
 #include "colag/sim/host_program.hpp"
 #include "colag/sim/mission/mission.hpp"
+#include "colag/sim/mission/scenario_file.hpp"
 #include "colag/sim/mission/truth_metrics.hpp"
 #include "colag/sim/mission/world_file.hpp"
 #include "colag/sim/mission/world_setup.hpp"
@@ -307,13 +308,14 @@ class Monitor final : public platform::Task {
       // Arrived at its mission goal: a goal sent at run time (ROS 2 goal_pose) is a stop on
       // the way, not the end of its mission.
       const msg::UgvStatus& st = traffic_.status[k];
-      const bool arrived = st.mode == msg::UgvMode::kArrived &&
-                           (Vec2(st.goal_m[0], st.goal_m[1]) - mission::ugv_goal(i)).norm() < 0.01;
+      const bool arrived =
+          st.mode == msg::UgvMode::kArrived &&
+          (Vec2(st.goal_m[0], st.goal_m[1]) - mission::ugv_goal(cfg_, i)).norm() < 0.01;
       still_[k].update(arrived, world_.ugv(i).speed_mps(), to_seconds(now - last_));
       if (arrived && reach_s_[k] < 0.0) {
         reach_s_[k] = t;
         reached_[k] =
-            (world_.ugv(i).pose().p - mission::ugv_goal(i)).norm() <= cfg_.goal_tolerance_m;
+            (world_.ugv(i).pose().p - mission::ugv_goal(cfg_, i)).norm() <= cfg_.goal_tolerance_m;
       }
       reached += reached_[k] ? 1 : 0;
       all_done = all_done && (arrived || world_.ugv(i).frozen());
@@ -376,16 +378,28 @@ int run(int argc, char** argv) {
   std::string uav_stack = "sim";
   std::string px4_release = "1.16";
   double px4_silent_at = -1.0, px4_failsafe_at = -1.0, px4_pilot_at = -1.0;
-  app.add_option("--scenario", cfg.scenario, "sparse | dense | pillars | rooms")
-      ->check(CLI::IsMember({"sparse", "dense", "pillars", "rooms"}));
-  app.add_option("--map", cfg.map_file, "a PCD map instead of a generated scenario");
-  app.add_option("--ugvs", cfg.ugvs, "number of UGVs")
-      ->check(CLI::Range(1, static_cast<int>(limits::kMaxUgvs)));
-  app.add_option("--seed", cfg.seed, "map seed")->check(sim::kSeed);
+  auto* scenario = app.add_option("--scenario", cfg.scenario, "sparse | dense | pillars | rooms")
+                       ->check(CLI::IsMember({"sparse", "dense", "pillars", "rooms"}));
+  auto* map = app.add_option("--map", cfg.map_file, "a PCD map instead of a generated scenario");
+  auto* ugvs = app.add_option("--ugvs", cfg.ugvs, "number of UGVs")
+                   ->check(CLI::Range(1, static_cast<int>(limits::kMaxUgvs)));
+  std::string scenario_file;
+  app.add_option("--scenario-file", scenario_file,
+                 "a YAML scenario (colag_sim's, config/scenarios/README.md): map, starts, goals, "
+                 "world; --seed, --world, --max-time given as well override it")
+      ->excludes(scenario)
+      ->excludes(map)
+      ->excludes(ugvs)
+      ->check(CLI::ExistingFile);
+  bool print_placements = false;
+  app.add_flag("--print-placements", print_placements,
+               "print each UGV's start and goal (one line each: id x y yaw_rad goal_x goal_y), "
+               "exit");
+  auto* seed = app.add_option("--seed", cfg.seed, "map seed")->check(sim::kSeed);
   app.add_option("--domain", domain, "the robots' DDS domain (the sim link uses domain + 1)")
       ->check(CLI::Range(0, 231));
-  app.add_option("--max-time", cfg.max_time_s, "mission time limit, s")
-      ->check(sim::positive_up_to(1e6));
+  auto* max_time = app.add_option("--max-time", cfg.max_time_s, "mission time limit, s")
+                       ->check(sim::positive_up_to(1e6));
   app.add_option("--start-timeout", start_timeout_s, "how long to wait for the robots, s")
       ->check(sim::positive_up_to(1e6));
   app.add_option("--max-silence", max_silence_s,
@@ -397,9 +411,10 @@ int run(int argc, char** argv) {
   app.add_option("--time-scale", time_scale,
                  "simulated seconds per second (the robots need the same --time-scale)")
       ->check(CLI::Range(0.1, 20.0));
-  app.add_option("--world", world_name,
-                 "ideal (the paper's), field (what real sensors do), or a YAML world file "
-                 "(config/worlds/field.yaml); each robot's clock is the host's in SITL");
+  auto* world_opt =
+      app.add_option("--world", world_name,
+                     "ideal (the paper's), field (what real sensors do), or a YAML world file "
+                     "(config/worlds/field.yaml); each robot's clock is the host's in SITL");
   sim::add_ugv_base_option(app, cfg.ugv_base);
   app.add_option("--uav-stack", uav_stack,
                  "sim: the UAV's devices over the sim link (robot.hal sim); px4: PX4's agent, "
@@ -424,9 +439,29 @@ int run(int argc, char** argv) {
       "input error; 3 a robot never appeared or went silent.");
   if (const auto code = sim::parse_command_line(app, argc, argv)) return *code;
   if (!cfg.map_file.empty()) cfg.scenario = "file";
-  if (std::string error; !mission::world_from_name(world_name, cfg.world, error)) {
+  const bool given_world = world_opt->count() > 0;
+  if (!scenario_file.empty()) {
+    // The file's values, then what the command line gave as well.
+    const mission::MissionConfig given = cfg;
+    if (std::string error; !mission::load_scenario_file(scenario_file, cfg, error)) {
+      std::fprintf(stderr, "colag_world: --scenario-file: %s\n", error.c_str());
+      return 2;
+    }
+    if (seed->count() > 0) cfg.seed = given.seed;
+    if (max_time->count() > 0) cfg.max_time_s = given.max_time_s;
+  }
+  if (std::string error; (scenario_file.empty() || given_world) &&
+                         !mission::world_from_name(world_name, cfg.world, error)) {
     std::fprintf(stderr, "colag_world: --world: %s\n", error.c_str());
     return 2;
+  }
+  if (print_placements) {
+    for (int i = 0; i < cfg.ugvs; ++i) {
+      const Pose2 s0 = mission::ugv_start(cfg, i);
+      const Vec2 g = mission::ugv_goal(cfg, i);
+      std::printf("%d %.6f %.6f %.9f %.6f %.6f\n", i, s0.p.x(), s0.p.y(), s0.yaw_rad, g.x(), g.y());
+    }
+    return 0;
   }
   const sim::SimWorldConfig wc = mission::sim_world_config(cfg);
   const bool px4 = uav_stack == "px4";
@@ -477,9 +512,9 @@ int run(int argc, char** argv) {
   sim::SimWorld world(wc, boxes, exec.clock(), &pool);
   std::vector<sim::WheelErrors> wheels = mission::draw_wheels(cfg);
   for (int i = 0; i < cfg.ugvs; ++i)
-    world.add_ugv(mission::ugv_start(i), {}, &wheels[static_cast<std::size_t>(i)]);
+    world.add_ugv(mission::ugv_start(cfg, i), {}, &wheels[static_cast<std::size_t>(i)]);
   // On PX4 the UAV takes off from the ground through the offboard protocol.
-  const Vec3 uav_start = mission::uav_start();
+  const Vec3 uav_start = cfg.uav_start;
   world.add_uav(px4 ? Vec3(uav_start.x(), uav_start.y(), 0.05) : uav_start);
 
   hal::sim::SimLink link;
