@@ -210,6 +210,7 @@ int run(int argc, char** argv) {
     if (app.get_option("--latency-ms")->count() > 0) cfg.faults.latency_ms = cli.faults.latency_ms;
     if (app.get_option("--jitter-ms")->count() > 0) cfg.faults.jitter_ms = cli.faults.jitter_ms;
     if (app.get_option("--loss")->count() == 0) loss_pct = cfg.faults.loss * 100.0;
+    if (app.get_option("--odom-bias")->count() == 0) odom_bias_pct = cfg.faults.odom_bias * 100.0;
   }
   if (scenario_file.empty() || given_world) {
     if (std::string error; !mission::world_from_name(world_name, cfg.world, error)) {

@@ -99,6 +99,29 @@ TEST(ScenarioFile, MistakesAreRefusedNamingTheKey) {
             std::string::npos);
   EXPECT_NE(refusal("map: {generator: sparse, boxes: 0}\n" + one).find("map.boxes"),
             std::string::npos);
+  EXPECT_NE(refusal(dense + one + "faults: {uav_blackout: [40, 20]}\n")
+                .find("faults.uav_blackout: expected [from_s, to_s]"),
+            std::string::npos);
+  EXPECT_NE(refusal(dense + one + "faults: {blackout: 20}\n").find("faults.blackout"),
+            std::string::npos);
+}
+
+TEST(ScenarioFile, FaultWindowsAndWheelBiasReachTheMission) {
+  MissionConfig cfg;
+  std::string error;
+  ASSERT_TRUE(load_scenario_file(
+      write("faults.yaml",
+            "map: {generator: dense}\nugvs:\n  - {start: [0, 16, -90], goal: [0, -16]}\n"
+            "faults: {blackout: [10, 12], uav_blackout: [20, 30.5], rpe_blackout: [40, 60],\n"
+            "         odom_bias_percent: -3}\n"),
+      cfg, error))
+      << error;
+  EXPECT_DOUBLE_EQ(cfg.faults.blackout.from_s, 10.0);
+  EXPECT_DOUBLE_EQ(cfg.faults.blackout.to_s, 12.0);
+  EXPECT_DOUBLE_EQ(cfg.faults.uav_blackout.to_s, 30.5);
+  EXPECT_DOUBLE_EQ(cfg.faults.rpe_blackout.from_s, 40.0);
+  EXPECT_DOUBLE_EQ(cfg.faults.odom_bias, -0.03);
+  EXPECT_TRUE(check(cfg, error)) << error;
 }
 
 TEST(ScenarioFile, GeneratorParametersReachTheMap) {

@@ -154,12 +154,28 @@ bool load_scenario_file(const std::string& file, MissionConfig& cfg, std::string
   c.ugvs = static_cast<int>(c.placements.size());
 
   const YAML::Node faults = board::child(root, "faults");
-  r.only(faults, "faults", {"loss_percent", "latency_ms", "jitter_ms"});
+  r.only(faults, "faults",
+         {"loss_percent", "latency_ms", "jitter_ms", "blackout", "uav_blackout", "rpe_blackout",
+          "odom_bias_percent"});
   double loss = c.faults.loss * 100.0;
   r.get(faults, "faults", "loss_percent", loss, 0.0, 100.0);
   c.faults.loss = loss / 100.0;
   r.get(faults, "faults", "latency_ms", c.faults.latency_ms, 0.0, 10000.0);
   r.get(faults, "faults", "jitter_ms", c.faults.jitter_ms, 0.0, 10000.0);
+  // Outages: [from, to] in mission seconds (colag_sim's --blackout T0:T1 and the like).
+  for (const auto& [key, window] : {std::pair{"blackout", &c.faults.blackout},
+                                    std::pair{"uav_blackout", &c.faults.uav_blackout},
+                                    std::pair{"rpe_blackout", &c.faults.rpe_blackout}}) {
+    if (double w[2] = {}; r.ok() && r.vector(faults, "faults", key, w, 2)) {
+      if (!(w[0] >= 0.0 && w[1] > w[0]))
+        r.fail(std::string("faults.") + key, "expected [from_s, to_s] with 0 <= from_s < to_s");
+      else
+        *window = {w[0], w[1]};
+    }
+  }
+  double bias = c.faults.odom_bias * 100.0;
+  r.get(faults, "faults", "odom_bias_percent", bias, -49.0, 49.0);
+  c.faults.odom_bias = bias / 100.0;
   if (!r.ok()) return false;
   cfg = c;
   return true;
