@@ -20,24 +20,80 @@ MapStore::MapStore(const MapStoreConfig& config) : config_(config) {
   make_disc(config_.plan_inflation_m, plan_disc_);
   make_disc(config_.predict_inflation_m, predict_disc_);
   state_.fill(CellState::kUnknown);
+  recount();
+}
+
+void MapStore::recount() {
   plan_count_.fill(0);
   near_occupied_.fill(0);
   near_unknown_.fill(0);
-  if (!config_.unknown_blocks_prediction) return;
-  // Every cell starts unknown, so a cell's count is the number of disc cells inside the grid:
-  // the whole disc away from the edges (stamping all 160 000 cells took ~10 ms per robot).
   const auto& g = geometry();
-  const int reach = predict_disc_.reach;
-  near_unknown_.fill(static_cast<std::uint16_t>(predict_disc_.cells));
-  for (int y = 0; y < g.cells_y(); ++y) {
-    const bool edge_row = y < reach || y >= g.cells_y() - reach;
-    for (int x = 0; x < g.cells_x(); ++x) {
-      if (!edge_row && x >= reach && x < g.cells_x() - reach) continue;
-      int inside = 0;
-      each_span({x, y}, predict_disc_, [&](std::size_t, int cells) { inside += cells; });
-      near_unknown_[g.index(CellIndex{x, y})] = static_cast<std::uint16_t>(inside);
+  if (config_.unknown_blocks_prediction) {
+    // Every cell unknown first, so a cell's count is the number of disc cells inside the grid:
+    // the whole disc away from the edges (stamping all 160 000 cells took ~10 ms per robot).
+    const int reach = predict_disc_.reach;
+    near_unknown_.fill(static_cast<std::uint16_t>(predict_disc_.cells));
+    for (int y = 0; y < g.cells_y(); ++y) {
+      const bool edge_row = y < reach || y >= g.cells_y() - reach;
+      for (int x = 0; x < g.cells_x(); ++x) {
+        if (!edge_row && x >= reach && x < g.cells_x() - reach) continue;
+        int inside = 0;
+        each_span({x, y}, predict_disc_, [&](std::size_t, int cells) { inside += cells; });
+        near_unknown_[g.index(CellIndex{x, y})] = static_cast<std::uint16_t>(inside);
+      }
     }
   }
+  // Then what is known: each cell that is not unknown, as set_cell would have counted it (but
+  // not as newly blocked: nothing changed where the robot is).
+  const std::uint64_t blocked_before = counters_.plan_cells_blocked;
+  for (std::size_t i = 0; i < state_.size(); ++i) {
+    if (state_[i] == CellState::kUnknown) continue;
+    const CellIndex c = g.cell_at(i);
+    if (config_.unknown_blocks_prediction) stamp(c, predict_disc_, near_unknown_, -1);
+    if (state_[i] != CellState::kOccupied) continue;
+    stamp(c, plan_disc_, plan_count_, +1);
+    stamp(c, predict_disc_, near_occupied_, +1);
+  }
+  counters_.plan_cells_blocked = blocked_before;
+}
+
+Status MapStore::move_to(const Vec2& origin) {
+  const GridGeometry2d& g = geometry_;
+  if (!all_finite(origin)) return {Errc::kInvalidArgument, "map window: origin not finite"};
+  const double fx = (origin.x() - g.origin_x()) / g.resolution();
+  const double fy = (origin.y() - g.origin_y()) / g.resolution();
+  if (std::abs(fx) > 1e7 || std::abs(fy) > 1e7)
+    return {Errc::kOutOfRange, "map window: moved beyond 1000 km"};
+  if (std::abs(fx - std::round(fx)) > 1e-6 || std::abs(fy - std::round(fy)) > 1e-6)
+    return {Errc::kInvalidArgument, "map window: origin not on the grid"};
+  const int dx = static_cast<int>(std::lround(fx)), dy = static_cast<int>(std::lround(fy));
+  if (dx == 0 && dy == 0) return Status::ok();
+  // New cell (x, y) is old cell (x + dx, y + dy). Rows in the order that never overwrites a row
+  // still to be read; within a row std::copy or copy_backward by the same rule.
+  const int nx = g.cells_x(), ny = g.cells_y();
+  const auto row = [&](int y) { return state_.begin() + static_cast<std::ptrdiff_t>(y) * nx; };
+  for (int k = 0; k < ny; ++k) {
+    const int y = dy >= 0 ? k : ny - 1 - k;
+    const int from_y = y + dy;
+    const auto out = row(y);
+    if (from_y < 0 || from_y >= ny || std::abs(dx) >= nx) {
+      std::fill(out, out + nx, CellState::kUnknown);
+      continue;
+    }
+    const auto in = row(from_y);
+    if (dx >= 0) {
+      std::copy(in + dx, in + nx, out);  // out <= in: forward is safe
+      std::fill(out + (nx - dx), out + nx, CellState::kUnknown);
+    } else {
+      std::copy_backward(in, in + (nx + dx), out + nx);
+      std::fill(out, out - dx, CellState::kUnknown);
+    }
+  }
+  // On the lattice exactly (the caller's origin may be a rounding away from it).
+  geometry_ = GridGeometry2d(g.origin_x() + dx * g.resolution(), g.origin_y() + dy * g.resolution(),
+                             g.resolution(), nx, ny);
+  recount();
+  return Status::ok();
 }
 
 void MapStore::make_disc(double radius_m, Disc& out) {

@@ -19,7 +19,7 @@ double gap_m(CellIndex a, CellIndex b) {
 class MapStoreTest : public ::testing::Test {
  protected:
   std::unique_ptr<MapStore> map = std::make_unique<MapStore>();  // ~1.5 MB: not on the stack
-  const GridGeometry2d& g = map->geometry();
+  const GridGeometry2d g = map->geometry();                      // a copy: tests replace the map
   // Random patches in the 4.4 m square from (x0, y0), then every cell's views against a
   // recomputation from the cell states.
   void check_against_recomputation(double x0, double y0);
@@ -169,4 +169,73 @@ TEST(MapStoreOptions, WhenUnknownDoesNotBlockOnlyOccupiedCellsBlockPrediction) {
   EXPECT_FALSE(map->predict_blocked(Vec2(1.0, 1.0)));
   EXPECT_FALSE(
       map->near_unknown_at(map->geometry().index(map->geometry().cell_of(Vec2(1.0, 1.0)))));
+}
+
+// The window moves over a larger site: what it keeps, and both views, are exactly those of a map
+// that was at the new place from the start and received the same patches (each cell of the new
+// window compared, by world position).
+TEST(MapStoreWindow, AMovedWindowIsTheMapThatWasThereFromTheStart) {
+  const auto moved = std::make_unique<MapStore>();
+  const auto fresh = std::make_unique<MapStore>();
+  const Vec2 to(-20.0 + 7.3, -20.0 - 12.0);  // +73 and -120 cells
+  ASSERT_TRUE(fresh->move_to(to));
+  Rng rng(5);
+  const auto random_state = [&](const Vec2&) {
+    const double u = rng.uniform();
+    return u < 0.1 ? CellState::kOccupied : u < 0.8 ? CellState::kFree : CellState::kUnknown;
+  };
+  // The same random cells for both (the same seed), in a square both windows cover...
+  Rng again = rng;
+  ASSERT_TRUE(test::fill_map(*moved, -12.65, -19.95, 4.05, -4.05, random_state));
+  rng = again;
+  ASSERT_TRUE(test::fill_map(*fresh, -12.65, -19.95, 4.05, -4.05, random_state));
+  // ...and some only the old window covers (gone after the move).
+  ASSERT_TRUE(test::fill_map(*moved, 8.0, 8.0, 19.0, 19.0,
+                             [](const Vec2&) { return CellState::kOccupied; }));
+  ASSERT_TRUE(moved->move_to(to + Vec2(1e-9, -1e-9)));  // a rounding off the lattice is fine
+  const GridGeometry2d& g = moved->geometry();
+  EXPECT_NEAR(g.origin_x(), to.x(), 1e-12);
+  EXPECT_NEAR(g.origin_y(), to.y(), 1e-12);
+  int occupied = 0;
+  for (int y = 0; y < g.cells_y(); ++y) {
+    for (int x = 0; x < g.cells_x(); ++x) {
+      const Vec2 p = g.center_of({x, y});
+      const CellIndex f = fresh->geometry().cell_of(p);
+      ASSERT_EQ(moved->state(CellIndex{x, y}), fresh->state(f)) << x << "," << y;
+      ASSERT_EQ(moved->plan_blocked(CellIndex{x, y}), fresh->plan_blocked(f)) << x << "," << y;
+      ASSERT_EQ(moved->predict_blocked(CellIndex{x, y}), fresh->predict_blocked(f))
+          << x << "," << y;
+      ASSERT_EQ(moved->near_occupied_at(g.index({x, y})),
+                fresh->near_occupied_at(fresh->geometry().index(f)));
+      occupied += moved->state(CellIndex{x, y}) == CellState::kOccupied ? 1 : 0;
+    }
+  }
+  EXPECT_GT(occupied, 1000);  // the kept part is not empty
+  // The old window's far corner is outside now: unknown and blocked.
+  EXPECT_EQ(moved->state(moved->geometry().cell_of(Vec2(15, 15))), CellState::kUnknown);
+  EXPECT_TRUE(moved->plan_blocked(Vec2(15, 15)));
+  // A patch where the window is now applies there.
+  ASSERT_TRUE(test::fill_map(*moved, -12.0, -30.0, -10.0, -28.0,
+                             [](const Vec2&) { return CellState::kFree; }));
+  EXPECT_EQ(moved->state(moved->geometry().cell_of(Vec2(-11, -29))), CellState::kFree);
+}
+
+TEST(MapStoreWindow, MovesBackAndForthFarAwayAndRefusesOffTheLattice) {
+  const auto map = std::make_unique<MapStore>();
+  ASSERT_TRUE(test::fill_map(*map, -5, -5, 5, 5, [](const Vec2&) { return CellState::kFree; }));
+  // Off the lattice, or not finite: refused, nothing changes.
+  EXPECT_EQ(map->move_to(Vec2(-19.95, -20.0)).code(), Errc::kInvalidArgument);
+  EXPECT_EQ(map->move_to(Vec2(std::nan(""), 0.0)).code(), Errc::kInvalidArgument);
+  EXPECT_EQ(map->state(map->geometry().cell_of(Vec2(0, 0))), CellState::kFree);
+  // There and back: what stayed inside throughout is kept.
+  ASSERT_TRUE(map->move_to(Vec2(-22.0, -17.0)));
+  ASSERT_TRUE(map->move_to(Vec2(-20.0, -20.0)));
+  EXPECT_EQ(map->state(map->geometry().cell_of(Vec2(0, 0))), CellState::kFree);
+  EXPECT_FALSE(map->predict_blocked(Vec2(0, 0)));
+  // Further than its own size: everything unknown (and blocked for prediction), planning free.
+  ASSERT_TRUE(map->move_to(Vec2(480.0, -20.0)));
+  EXPECT_EQ(map->state(map->geometry().cell_of(Vec2(500, 0))), CellState::kUnknown);
+  EXPECT_TRUE(map->predict_blocked(Vec2(500, 0)));
+  EXPECT_FALSE(map->plan_blocked(Vec2(500, 0)));
+  EXPECT_TRUE(map->plan_blocked(Vec2(0, 0)));  // outside now
 }

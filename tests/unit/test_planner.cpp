@@ -95,6 +95,24 @@ TEST_F(PlannerTest, FindsTheShortestRouteThroughAGap) {
     EXPECT_GT(w.x(), -0.5);  // it went through the gap
 }
 
+TEST_F(PlannerTest, PlansWhereTheMapsWindowIsAfterItMoved) {
+  // The window moved 60 m east: the same wall-with-gap scene there is planned through the gap,
+  // as optimal as A* on the independent Dijkstra, and the old place is now outside.
+  ASSERT_TRUE(map->move_to(Vec2(40.0, -20.0)));
+  const Vec2 east(60.0, 0.0);
+  ASSERT_TRUE(
+      test::fill_map(*map, 52, -8, 68, 8, [&](const Vec2& p) { return wall_with_gap(p - east); }));
+  const Vec2 a = east + Vec2(-3.0, -5.0), b = east + Vec2(0.0, 5.0);
+  ASSERT_EQ(planner->plan(*map, a, b, {}, path), PlanResult::kOk);
+  EXPECT_NEAR(planner->last_grid_cost_m(), dijkstra_m(a, b), 1e-3);
+  expect_segments_free();
+  bool through_gap = false;
+  for (const Vec2& w : path.waypoints)
+    through_gap = through_gap || (w.x() > east.x() + 1.5 && w.x() < east.x() + 4.5);
+  EXPECT_TRUE(through_gap);
+  EXPECT_EQ(planner->plan(*map, Vec2(0, -5), Vec2(0, 5), {}, path), PlanResult::kStartBlocked);
+}
+
 TEST_F(PlannerTest, ReportsNoPathWhenTheGoalIsWalledIn) {
   ASSERT_TRUE(test::fill_map(*map, -5, -5, 5, 5, [](const Vec2& p) {
     const double r = (p - Vec2(2, 2)).norm();

@@ -44,7 +44,14 @@ class MapStore {
   // rejected and counted, never half-applied.
   Status apply(const msg::MapPatch& patch);
 
-  const GridGeometry2d& geometry() const { return kWorldGrid2d; }
+  // The window of the site this map holds: limits' size, at kWorldGrid2d's place until moved.
+  const GridGeometry2d& geometry() const { return geometry_; }
+  // Moves the window so that its corner (cell (0, 0)'s) is at `origin` (on the grid's lattice:
+  // a whole number of cells from where it is): the cells it keeps keep their state, the cells
+  // that enter it are unknown, and both views are recomputed (a few ms: for a robot that drives
+  // off its window's edge, not for every step). Refused (map unchanged) off the lattice or not
+  // finite.
+  Status move_to(const Vec2& origin);
   // Every cell's state, row-major over geometry() (a copy for telemetry is one memcpy).
   std::span<const CellState> cells() const { return state_; }
   // Outside the grid: unknown, and blocked in both views.
@@ -92,7 +99,10 @@ class MapStore {
   void each_span(CellIndex c, const Disc& disc, F&& f) const;
   void stamp(CellIndex c, const Disc& disc, Counts& counts, int delta);
   void set_cell(CellIndex c, CellState s);
+  // Both views from scratch: as if every cell had been set one by one from unknown.
+  void recount();
 
+  GridGeometry2d geometry_ = kWorldGrid2d;
   MapStoreConfig config_;
   MapStoreCounters counters_;
   std::array<CellState, limits::kGridCells2d> state_;

@@ -50,7 +50,7 @@ class Planner {
   bool blocked(CellIndex c) const {
     return !geometry().contains(c) || blocked(geometry().index(c));
   }
-  const GridGeometry2d& geometry() const { return kWorldGrid2d; }
+  const GridGeometry2d& geometry() const { return map_->geometry(); }  // during plan()
   bool nearest_free(CellIndex from, CellIndex& out) const;
   bool search(CellIndex start, CellIndex goal);
   bool line_of_sight(const Vec2& a, const Vec2& b) const;
