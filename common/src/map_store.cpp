@@ -188,15 +188,17 @@ Status MapStore::apply(const msg::MapPatch& patch) {
     return reject({Errc::kOutOfRange, "map patch: outside the map"});
   }
   const CellIndex o{static_cast<int>(std::lround(fx)), static_cast<int>(std::lround(fy))};
-  if (!g.contains(o) ||
-      !g.contains(CellIndex{o.x + patch.width_cells - 1, o.y + patch.height_cells - 1})) {
-    return reject({Errc::kOutOfRange, "map patch: outside the map"});
-  }
+  // The part inside the window is applied (a window that moves with its robot holds part of
+  // a patch at its edge); a patch with no cell inside it is refused.
+  const int x0 = std::max(o.x, 0), y0 = std::max(o.y, 0);
+  const int x1 = std::min(o.x + static_cast<int>(patch.width_cells), g.cells_x());
+  const int y1 = std::min(o.y + static_cast<int>(patch.height_cells), g.cells_y());
+  if (x0 >= x1 || y0 >= y1) return reject({Errc::kOutOfRange, "map patch: outside the map"});
   if (Status s = decode_patch(patch, scratch_); !s) return reject(s);
 
-  for (int y = 0; y < scratch_.height; ++y) {
-    for (int x = 0; x < scratch_.width; ++x)
-      set_cell({o.x + x, o.y + y}, scratch_.at(x, y));
+  for (int y = y0; y < y1; ++y) {
+    for (int x = x0; x < x1; ++x)
+      set_cell({x, y}, scratch_.at(x - o.x, y - o.y));
   }
   ++counters_.patches_applied;
   return Status::ok();

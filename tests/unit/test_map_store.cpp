@@ -138,8 +138,8 @@ TEST_F(MapStoreTest, RejectsEveryMalformedPatchWithoutTouchingTheMap) {
   p.origin_y_m = 1.03;
   rejected(p, "origin off the grid");
   p = good;
-  p.origin_x_m = 19.5;  // 10 cells from 19.5 run past the edge at 20
-  rejected(p, "partly outside");
+  p.origin_x_m = 20.0;  // starts at the edge: wholly outside
+  rejected(p, "outside");
   p = good;
   p.origin_x_m = -1e300;
   rejected(p, "far outside");
@@ -155,6 +155,16 @@ TEST_F(MapStoreTest, RejectsEveryMalformedPatchWithoutTouchingTheMap) {
   EXPECT_EQ(map->counters().patches_applied, 0u);
   EXPECT_TRUE(map->apply(good));
   EXPECT_EQ(map->state(g.cell_of(Vec2(1.05, 1.05))), CellState::kFree);
+  // Past the edge: the 5 columns inside are applied, nothing else happens.
+  p = good;
+  p.origin_x_m = 19.5;
+  p.origin_y_m = -20.5;  // and 5 rows below the bottom edge
+  EXPECT_TRUE(map->apply(p));
+  EXPECT_EQ(map->state(g.cell_of(Vec2(19.95, -19.95))), CellState::kFree);
+  EXPECT_EQ(map->state(g.cell_of(Vec2(19.55, -19.55))), CellState::kFree);
+  EXPECT_EQ(map->state(g.cell_of(Vec2(19.45, -19.55))), CellState::kUnknown);
+  EXPECT_EQ(map->state(g.cell_of(Vec2(19.55, -19.45))), CellState::kUnknown);
+  EXPECT_EQ(map->counters().cells_changed, 100u + 25u);
 }
 
 TEST(MapStoreOptions, WhenUnknownDoesNotBlockOnlyOccupiedCellsBlockPrediction) {

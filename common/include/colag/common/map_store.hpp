@@ -41,7 +41,8 @@ class MapStore {
   explicit MapStore(const MapStoreConfig& config = {});
 
   // Validates the whole patch (geometry, payload) before touching the map: a bad patch is
-  // rejected and counted, never half-applied.
+  // rejected and counted, never half-applied. A patch reaching past the window's edge is applied
+  // where the window holds it; one wholly outside is refused.
   Status apply(const msg::MapPatch& patch);
 
   // The window of the site this map holds: limits' size, at kWorldGrid2d's place until moved.
