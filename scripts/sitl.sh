@@ -357,5 +357,13 @@ if grep -q '"all_reached": true' "$json" && grep -q '"collisions": 0' "$json"; t
   echo "sitl: PASS: every UGV reached its goal, no collision"
 else
   echo "sitl: FAIL: not every UGV reached its goal, or a collision" >&2
+  # What each UGV that did not reach said last (CI keeps only this output, not the run folder).
+  for ((i = 0; i < ugvs; ++i)); do
+    awk -v id="$i" 'index($0, "\"id\": " id ",") {u = 1} u && /"reached": false/ {print "bad"; exit}
+                    u && /"reached": true/ {exit}' "$json" | grep -q bad || continue
+    echo "sitl: UGV $i did not reach; the end of its log ($run/ugv$i.log):" >&2
+    tail -n 25 "$run/ugv$i.log" | sed 's/^/  | /' >&2
+    [ ! -s "$run/ugv$i.restart.log" ] || tail -n 25 "$run/ugv$i.restart.log" | sed 's/^/  | (restarted) /' >&2
+  done
   exit 1
 fi
