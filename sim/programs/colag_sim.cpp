@@ -91,7 +91,7 @@ int run(int argc, char** argv) {
                                   "generated map: sparse (40 boxes), dense (80), pillars (80, "
                                   "0.2-0.5 m wide, 0.6-1.2 m tall) or rooms (3 x 3 rooms, walls "
                                   "with doorways, 16 boxes of furniture)")
-                       ->check(CLI::IsMember({"sparse", "dense", "pillars", "rooms"}));
+                       ->check(CLI::IsMember(mission::kGeneratedScenarios));
   auto* map_opt = app.add_option("--map", map_file, "a PCD map instead (ascii or binary; x y z)")
                       ->excludes(scenario)
                       ->check(CLI::ExistingFile);

@@ -379,7 +379,7 @@ int run(int argc, char** argv) {
   std::string px4_release = "1.16";
   double px4_silent_at = -1.0, px4_failsafe_at = -1.0, px4_pilot_at = -1.0;
   auto* scenario = app.add_option("--scenario", cfg.scenario, "sparse | dense | pillars | rooms")
-                       ->check(CLI::IsMember({"sparse", "dense", "pillars", "rooms"}));
+                       ->check(CLI::IsMember(mission::kGeneratedScenarios));
   auto* map = app.add_option("--map", cfg.map_file, "a PCD map instead of a generated scenario");
   auto* ugvs = app.add_option("--ugvs", cfg.ugvs, "number of UGVs")
                    ->check(CLI::Range(1, static_cast<int>(limits::kMaxUgvs)));

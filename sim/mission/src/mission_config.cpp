@@ -108,31 +108,31 @@ bool check(const MissionConfig& cfg, std::string& error) {
   return true;
 }
 
+bool is_box_field(const std::string& scenario) {
+  return scenario == "sparse" || scenario == "dense" || scenario == "pillars";
+}
+
 bool build_world(const MissionConfig& cfg, sim::BoxWorld& world, std::string& error,
                  std::vector<std::string>* warnings) {
-  if (cfg.scenario == "sparse" || cfg.scenario == "dense" || cfg.scenario == "pillars") {
+  const auto generated = [&](Result<sim::BoxWorld> w) {
+    if (!w) {
+      error = w.status().message();
+      return false;
+    }
+    world = w.value();
+    return true;
+  };
+  if (is_box_field(cfg.scenario)) {
     sim::MapGenConfig gen;
     gen.boxes = cfg.boxes > 0 ? cfg.boxes : cfg.scenario == "sparse" ? 40 : 80;
     gen.pillars = cfg.scenario == "pillars";  // 80 pillars, 0.2-0.5 m wide, 0.6-1.2 m tall
     gen.seed = cfg.seed;
-    auto w = sim::generate_box_world(gen);
-    if (!w) {
-      error = w.status().message();
-      return false;
-    }
-    world = w.value();
-    return true;
+    return generated(sim::generate_box_world(gen));
   }
   if (cfg.scenario == "rooms") {
     sim::RoomGenConfig gen = cfg.rooms;
     gen.seed = cfg.seed;
-    auto w = sim::generate_room_world(gen);
-    if (!w) {
-      error = w.status().message();
-      return false;
-    }
-    world = w.value();
-    return true;
+    return generated(sim::generate_room_world(gen));
   }
   if (cfg.scenario == "file") {
     std::vector<Vec3> points;

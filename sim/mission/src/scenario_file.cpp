@@ -2,6 +2,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -37,7 +38,7 @@ std::string outside_text(const Vec2& p) {
 // and `furniture` for rooms. Each only with its generator.
 void read_generator_parameters(board::Reader& r, const YAML::Node& map, MissionConfig& c) {
   const bool rooms = c.scenario == "rooms";
-  const bool field = c.scenario == "sparse" || c.scenario == "dense" || c.scenario == "pillars";
+  const bool field = is_box_field(c.scenario);
   for (const char* key : {"boxes", "rooms", "door_m", "furniture"}) {
     if (!r.ok() || !map[key]) continue;
     if ((std::string(key) == "boxes" && !field) || (std::string(key) != "boxes" && !rooms))
@@ -89,8 +90,8 @@ bool load_scenario_file(const std::string& file, MissionConfig& cfg, std::string
   if (r.ok() && generator.empty() == pcd.empty())
     r.fail("map", "give either generator (sparse, dense, pillars, rooms) or pcd (a file)");
   if (r.ok() && !generator.empty()) {
-    if (generator != "sparse" && generator != "dense" && generator != "pillars" &&
-        generator != "rooms")
+    if (std::find(kGeneratedScenarios.begin(), kGeneratedScenarios.end(), generator) ==
+        kGeneratedScenarios.end())
       r.fail("map.generator", "expected sparse, dense, pillars or rooms");
     c.scenario = generator;
   }

@@ -103,6 +103,10 @@ Vec3 uav_start();
 // This mission's: its placements, or the paper's layout.
 Pose2 ugv_start(const MissionConfig& cfg, int i);
 Vec2 ugv_goal(const MissionConfig& cfg, int i);
+// The generated maps (colag_sim --scenario, a scenario file's map.generator), and which of them
+// are fields of boxes or pillars (`boxes` sets how many).
+inline const std::vector<std::string> kGeneratedScenarios{"sparse", "dense", "pillars", "rooms"};
+bool is_box_field(const std::string& scenario);
 // The scenario's obstacles: generated from the seed (sparse / dense) or loaded (file: checked
 // against the layout, see map_checks.hpp; what it warns about is added to `warnings`).
 bool build_world(const MissionConfig& cfg, sim::BoxWorld& world, std::string& error,
