@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "colag/common/grid_shift.hpp"
+#include "colag/common/map_window.hpp"
+
 namespace colag {
 
 template <class F>
@@ -59,36 +62,11 @@ void MapStore::recount() {
 
 Status MapStore::move_to(const Vec2& origin) {
   const GridGeometry2d& g = geometry_;
-  if (!all_finite(origin)) return {Errc::kInvalidArgument, "map window: origin not finite"};
-  const double fx = (origin.x() - g.origin_x()) / g.resolution();
-  const double fy = (origin.y() - g.origin_y()) / g.resolution();
-  if (std::abs(fx) > 1e7 || std::abs(fy) > 1e7)
-    return {Errc::kOutOfRange, "map window: moved beyond 1000 km"};
-  if (std::abs(fx - std::round(fx)) > 1e-6 || std::abs(fy - std::round(fy)) > 1e-6)
-    return {Errc::kInvalidArgument, "map window: origin not on the grid"};
-  const int dx = static_cast<int>(std::lround(fx)), dy = static_cast<int>(std::lround(fy));
+  int dx = 0, dy = 0;
+  if (Status s = window_step(g, origin, dx, dy); !s.is_ok()) return s;
   if (dx == 0 && dy == 0) return Status::ok();
-  // New cell (x, y) is old cell (x + dx, y + dy). Rows in the order that never overwrites a row
-  // still to be read; within a row std::copy or copy_backward by the same rule.
   const int nx = g.cells_x(), ny = g.cells_y();
-  const auto row = [&](int y) { return state_.begin() + static_cast<std::ptrdiff_t>(y) * nx; };
-  for (int k = 0; k < ny; ++k) {
-    const int y = dy >= 0 ? k : ny - 1 - k;
-    const int from_y = y + dy;
-    const auto out = row(y);
-    if (from_y < 0 || from_y >= ny || std::abs(dx) >= nx) {
-      std::fill(out, out + nx, CellState::kUnknown);
-      continue;
-    }
-    const auto in = row(from_y);
-    if (dx >= 0) {
-      std::copy(in + dx, in + nx, out);  // out <= in: forward is safe
-      std::fill(out + (nx - dx), out + nx, CellState::kUnknown);
-    } else {
-      std::copy_backward(in, in + (nx + dx), out + nx);
-      std::fill(out, out - dx, CellState::kUnknown);
-    }
-  }
+  shift_layer(state_.data(), nx, ny, dx, dy, CellState::kUnknown);
   // On the lattice exactly (the caller's origin may be a rounding away from it).
   geometry_ = GridGeometry2d(g.origin_x() + dx * g.resolution(), g.origin_y() + dy * g.resolution(),
                              g.resolution(), nx, ny);

@@ -97,13 +97,15 @@ int run(int argc, char** argv) {
                       ->check(CLI::ExistingFile);
   auto* ugvs_opt = app.add_option("--ugvs", cfg.ugvs, "number of UGVs")
                        ->check(CLI::Range(1, static_cast<int>(limits::kMaxUgvs)));
+  auto* site_opt = sim::add_site_option(app, cfg.site)->excludes(map_opt);
   std::string scenario_file;
   app.add_option("--scenario-file", scenario_file,
                  "a YAML scenario: the map, each UGV's start and goal, the UAV's start, the world, "
                  "faults (config/scenarios/README.md); options given as well override its values")
       ->excludes(scenario)
       ->excludes(map_opt)
-      ->excludes(ugvs_opt);
+      ->excludes(ugvs_opt)
+      ->excludes(site_opt);
   std::string world_name = "ideal";
   app.add_option("--world", world_name,
                  "ideal (the noise the firmware's models assume: the paper's tables), field (what "
@@ -254,6 +256,7 @@ int run(int argc, char** argv) {
     cfg.clocks.step_s = by;
   }
 
+  mission::lay_out_site(cfg);
   if (!save_map.empty()) {
     sim::BoxWorld world;
     std::string error;

@@ -383,6 +383,7 @@ int run(int argc, char** argv) {
   auto* map = app.add_option("--map", cfg.map_file, "a PCD map instead of a generated scenario");
   auto* ugvs = app.add_option("--ugvs", cfg.ugvs, "number of UGVs")
                    ->check(CLI::Range(1, static_cast<int>(limits::kMaxUgvs)));
+  auto* site = sim::add_site_option(app, cfg.site)->excludes(map);
   std::string scenario_file;
   app.add_option("--scenario-file", scenario_file,
                  "a YAML scenario (colag_sim's, config/scenarios/README.md): map, starts, goals, "
@@ -390,6 +391,7 @@ int run(int argc, char** argv) {
       ->excludes(scenario)
       ->excludes(map)
       ->excludes(ugvs)
+      ->excludes(site)
       ->check(CLI::ExistingFile);
   bool print_placements = false;
   app.add_flag("--print-placements", print_placements,
@@ -453,6 +455,11 @@ int run(int argc, char** argv) {
   if (std::string error; (scenario_file.empty() || given_world) &&
                          !mission::world_from_name(world_name, cfg.world, error)) {
     std::fprintf(stderr, "colag_world: --world: %s\n", error.c_str());
+    return 2;
+  }
+  mission::lay_out_site(cfg);
+  if (std::string error; !mission::check(cfg, error)) {
+    std::fprintf(stderr, "colag_world: %s\n", error.c_str());
     return 2;
   }
   if (print_placements) {

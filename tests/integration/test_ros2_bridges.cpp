@@ -105,8 +105,8 @@ TEST(UgvRos2Bridge, GoalsFromRos2AreValidatedByTheTaskAndAnswered) {
       },
       10s));
   EXPECT_EQ(rig.task->goal(), Vec2(0.0, -10.0));
-  // Outside the map: refused by the task.
-  const auto far_goal = goal(900.0, 0.0, "map");
+  // Beyond the largest site (limits::kMaxSiteHalf_m): refused by the task.
+  const auto far_goal = goal(20000.0, 0.0, "map");
   const std::uint64_t refused = rig.bridge->counters().goals_refused;
   ASSERT_TRUE(step_until(
       *rig.bridge, now,

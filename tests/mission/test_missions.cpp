@@ -7,6 +7,7 @@
 
 #include "colag/common/limits.hpp"
 #include "colag/sim/mission/mission.hpp"
+#include "colag/sim/mission/world_file.hpp"
 
 using namespace colag;
 using namespace colag::mission;
@@ -101,6 +102,27 @@ TEST(Mission, ThirtyTwoUgvsAllReachAndEachReceivesAboutWhatOneOfThreeDoes) {
   ASSERT_EQ(all.ugvs.size(), limits::kMaxUgvs);
   EXPECT_LT(all.bytes_in_per_ugv_per_s, 1.5 * three.bytes_in_per_ugv_per_s);
   EXPECT_GT(all.uav_bytes_out_per_s, 5.0 * three.uav_bytes_out_per_s);  // the UAV's does grow
+}
+
+TEST(Mission, ALongSiteIsCrossedWithMapsThatMoveWithTheRobots) {
+  // A 24 x 90 m dense site (field world): the goals lie 62 m beyond the maps' first window
+  // (40 m, limits.hpp), so the UGVs and the UAV get there only if their windows move with them.
+  MissionConfig cfg;
+  cfg.scenario = "dense";
+  cfg.site = Vec2(24.0, 90.0);
+  cfg.ugvs = 2;
+  cfg.seed = 1;
+  cfg.max_time_s = 1500;
+  std::string error;
+  ASSERT_TRUE(world_from_name("field", cfg.world, error)) << error;
+  lay_out_site(cfg);
+  ASSERT_EQ(cfg.placements.size(), 2u);
+  EXPECT_DOUBLE_EQ(cfg.placements[0].goal.y(), -42.5);
+  const MissionOutcome o = run(cfg);
+  // expect_all_reached_safely's 32 m: the paper's arena; here each drives 85 m.
+  expect_all_reached_safely(o);
+  for (const UgvOutcome& u : o.ugvs)
+    EXPECT_GE(u.traj_length_m, 85.0 - u.goal_distance_m - 0.01) << "UGV " << u.id;
 }
 
 TEST(Mission, WithoutRelativePoseUpdatesTheBlindUgvsDoNotMakeIt) {

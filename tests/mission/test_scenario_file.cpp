@@ -39,6 +39,39 @@ TEST(ScenarioFile, EveryShippedScenarioLoads) {
   EXPECT_GE(files, 3);
 }
 
+TEST(ScenarioFile, ASiteSizesTheGeneratorAndACountLaysTheUgvsOutAlongIt) {
+  MissionConfig cfg;
+  std::string error;
+  ASSERT_TRUE(load_scenario_file(
+      write("site.yaml", "map: {generator: sparse, site: [100, 60]}\nugvs: 4\n"), cfg, error))
+      << error;
+  EXPECT_EQ(cfg.site, Vec2(100.0, 60.0));
+  ASSERT_EQ(cfg.placements.size(), 4u);
+  for (int i = 0; i < 4; ++i) {  // 25 m apart, 2.5 m inside the north and south edges
+    EXPECT_EQ(cfg.placements[i].start.p, Vec2(-37.5 + 25.0 * i, 27.5));
+    EXPECT_EQ(cfg.placements[i].goal, Vec2(-37.5 + 25.0 * i, -27.5));
+  }
+  EXPECT_EQ(cfg.uav_start, Vec3(0.0, 26.5, 1.0));
+  sim::BoxWorld world;
+  ASSERT_TRUE(build_world(cfg, world, error)) << error;
+  // The sparse field's density (40 boxes per 27 x 27 m) over 100 x 50 m: 274 boxes.
+  EXPECT_EQ(world.boxes.size(), 274u);
+  EXPECT_DOUBLE_EQ(world.max_x_m, 50.0);
+  EXPECT_DOUBLE_EQ(world.min_y_m, -25.0);
+  // Mistakes.
+  EXPECT_NE(
+      refusal("map: {generator: dense}\nugvs: 4\n").find("ugvs: a number of UGVs needs map.site"),
+      std::string::npos);
+  EXPECT_NE(refusal("map: {pcd: a.pcd, site: [50, 50]}\nugvs: 2\n")
+                .find("map.site: sizes a generated map"),
+            std::string::npos);
+  EXPECT_NE(
+      refusal("map: {generator: dense, site: [20, 50]}\nugvs: 11\n").find("too narrow for 11 UGVs"),
+      std::string::npos);
+  EXPECT_NE(refusal("map: {generator: dense, site: [5, 50]}\nugvs: 1\n").find("map.site: expected"),
+            std::string::npos);
+}
+
 TEST(ScenarioFile, TheMissionFliesTheFilesStartsAndGoals) {
   MissionConfig cfg;
   cfg.max_time_s = 200;
@@ -75,8 +108,8 @@ TEST(ScenarioFile, MistakesAreRefusedNamingTheKey) {
   EXPECT_NE(refusal(dense + "ugvs:\n  - {start: [0, 16], goal: [0, -16]}\n")
                 .find("ugvs[0].start: expected a list of 3 numbers"),
             std::string::npos);
-  EXPECT_NE(refusal(dense + "ugvs:\n  - {start: [0, 16, 0], goal: [0, -30]}\n")
-                .find("ugvs[0].goal: (0.0, -30.0) is outside"),
+  EXPECT_NE(refusal(dense + "ugvs:\n  - {start: [0, 16, 0], goal: [0, -30000]}\n")
+                .find("ugvs[0].goal: (0.0, -30000.0) is beyond the largest site"),
             std::string::npos);
   EXPECT_NE(refusal(dense + one + "  - {start: [0.5, 16, -90], goal: [2, -16]}\n")
                 .find("ugvs[1].start: 0.50 m from ugvs[0].start"),

@@ -223,6 +223,50 @@ TEST(Mapper, IgnoresScansFromOutsideTheGridAndNonFinitePoints) {
   EXPECT_EQ(map->counters().voxel_updates, 0u);
 }
 
+// The window moves with the UAV: what both windows hold keeps its state to the voxel, what
+// enters is unknown, and a scan from beyond the old edge maps there.
+TEST(Mapper, MovedWindowKeepsWhatItHoldsAndMapsBeyondTheOldEdge) {
+  auto map = std::make_unique<Mapper>();
+  scan_dense_map(straight_flight(), {map.get()});
+  const GridGeometry3d before = map->geometry();
+  const int nz = 12;  // the layers the flight maps
+  std::vector<VoxelState> old(before.layer().size() * nz);
+  for (int z = 0; z < nz; ++z)
+    for (int y = 0; y < before.cells_y(); ++y)
+      for (int x = 0; x < before.cells_x(); ++x)
+        old[before.index({x, y, z})] = map->state(VoxelIndex{x, y, z});
+  EXPECT_FALSE(map->move_to(Vec2(-15.05, -20.0)).is_ok());  // off the lattice
+  ASSERT_TRUE(map->move_to(Vec2(-15.0, -23.0)).is_ok());    // 5 m east, 3 m south
+  const GridGeometry3d& g = map->geometry();
+  EXPECT_DOUBLE_EQ(g.origin_x(), -15.0);
+  EXPECT_DOUBLE_EQ(g.origin_y(), -23.0);
+  std::size_t kept = 0, entered = 0, known = 0;
+  for (int z = 0; z < nz; ++z) {
+    for (int y = 0; y < g.cells_y(); ++y) {
+      for (int x = 0; x < g.cells_x(); ++x) {
+        const VoxelIndex was{x + 50, y - 30, z};  // the same place in the old window
+        const VoxelState now = map->state(VoxelIndex{x, y, z});
+        if (before.contains(was)) {
+          ASSERT_EQ(now, old[before.index(was)]) << x << " " << y << " " << z;
+          ++kept;
+          known += now != VoxelState::kUnknown;
+        } else {
+          ASSERT_EQ(now, VoxelState::kUnknown);
+          ++entered;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(entered, std::size_t{nz} * (400 * 400 - 350 * 370));
+  EXPECT_GT(known, 100000u);  // the flight's map came along
+  EXPECT_GT(kept, entered);
+  // 22 m east: outside the first window, inside this one.
+  const hal::LidarPoint hit{2.0F, 0.0F, 0.0F};
+  map->insert_scan({Vec3(22.05, 0.05, 1.05), Quat::Identity()}, {TimePoint{}, 8.0F, {&hit, 1}, {}});
+  EXPECT_EQ(map->state(Vec3(24.05, 0.05, 1.05)), VoxelState::kOccupied);
+  EXPECT_EQ(map->state(Vec3(23.05, 0.05, 1.05)), VoxelState::kFree);
+}
+
 // The early stop in Mapper::trace skips miss updates that full tracing would make, and nothing
 // else: so it may leave voxels less certain (unknown or more occupied), but it must never call a
 // voxel free that full tracing does not, and over a flight it must agree almost everywhere.

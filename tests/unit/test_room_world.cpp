@@ -68,8 +68,8 @@ TEST(RoomWorld, WallsWithOneDoorwayEachFurnitureClearOfThemEveryPlaceReachable) 
       const bool wall = b.half_size.minCoeff() == c.wall_thickness_m / 2;
       walls += wall ? 1 : 0;
       furniture += wall ? 0 : 1;
-      EXPECT_LE(std::abs(b.center.x()) + b.half_size.x(), c.arena_half_m + 1e-9);
-      EXPECT_LE(std::abs(b.center.y()) + b.half_size.y(), c.arena_half_m + 1e-9);
+      EXPECT_LE(std::abs(b.center.x()) + b.half_size.x(), c.arena_half.x() + 1e-9);
+      EXPECT_LE(std::abs(b.center.y()) + b.half_size.y(), c.arena_half.y() + 1e-9);
     }
     EXPECT_EQ(walls, 2u * 17u) << "seed " << seed;
     EXPECT_EQ(furniture, c.furniture);

@@ -199,7 +199,7 @@ TEST(UgvNavTask, ANewGoalAtRunTimeIsValidatedThenDrivenTo) {
   rig.publish_map(-3.2, -3.2, 9.6, 6.4);
   ASSERT_TRUE(rig.run_until([&] { return rig.ugv->mode() == msg::UgvMode::kArrived; }, 30s));
   EXPECT_EQ(rig.ugv->request_goal(Vec2(std::nan(""), 0.0)), GoalResult::kNotFinite);
-  EXPECT_EQ(rig.ugv->request_goal(Vec2(500.0, 0.0)), GoalResult::kOutsideMap);
+  EXPECT_EQ(rig.ugv->request_goal(Vec2(20000.0, 0.0)), GoalResult::kOutsideMap);
   EXPECT_EQ(rig.ugv->mode(), msg::UgvMode::kArrived);  // refusals change nothing
   EXPECT_EQ(rig.ugv->goal(), Vec2(2.0, 0.0));
   ASSERT_EQ(rig.ugv->request_goal(Vec2(4.0, 3.0)), GoalResult::kAccepted);

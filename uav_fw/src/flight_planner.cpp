@@ -3,11 +3,21 @@
 #include <algorithm>
 #include <cmath>
 
+#include "colag/common/map_window.hpp"
+
 namespace colag::uav {
 
 void FlightPlanner::plan(const Vec2& from, TimePoint now, const MapStore& flight_layer) {
   planned_at_ = now;
-  if (planner_.plan(flight_layer, from, target_, {}, path_) != PlanResult::kOk) {
+  // A target beyond the flight layer's window: around what it knows up to where the straight
+  // line leaves it, then straight on (unknown is free at flight altitude: the UAV sees).
+  const Vec2 to = clip_into(flight_layer.geometry(), from, target_, 1.0);
+  if (planner_.plan(flight_layer, from, to, {}, path_) == PlanResult::kOk) {
+    if (to != target_) {
+      if (!path_.waypoints.push_back(target_)) path_.waypoints.back() = target_;
+      path_.length_m += (target_ - to).norm();
+    }
+  } else {
     // Nothing known in the way, or boxed in: fly straight and let the next plan correct it.
     ++plan_failures_;
     path_.waypoints.clear();

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "colag/common/grid_shift.hpp"
+#include "colag/common/map_window.hpp"
+
 namespace colag::uav {
 
 namespace {
@@ -46,6 +49,21 @@ Mapper::Mapper(const MapperConfig& config, ForkJoin* fork_join)
   reach_ = reach < std::max(g.cells_x(), g.cells_y()) ? static_cast<int>(reach)
                                                       : std::max(g.cells_x(), g.cells_y());
   logodds_.fill(kUnknown);
+}
+
+Status Mapper::move_to(const Vec2& origin) {
+  const GridGeometry3d& g = geometry_;
+  int dx = 0, dy = 0;
+  if (Status s = window_step(g.layer(), origin, dx, dy); !s.is_ok()) return s;
+  if (dx == 0 && dy == 0) return Status::ok();
+  const std::size_t layer = g.layer().size();
+  for (int z = 0; z < g.cells_z(); ++z) {
+    shift_layer(logodds_.data() + static_cast<std::size_t>(z) * layer, g.cells_x(), g.cells_y(), dx,
+                dy, kUnknown);
+  }
+  geometry_ = GridGeometry3d(g.origin_x() + dx * g.resolution(), g.origin_y() + dy * g.resolution(),
+                             g.origin_z(), g.resolution(), g.cells_x(), g.cells_y(), g.cells_z());
+  return Status::ok();
 }
 
 VoxelState Mapper::state(VoxelIndex v) const {

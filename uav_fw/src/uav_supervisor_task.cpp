@@ -166,6 +166,7 @@ void UavSupervisorTask::control_step(TimePoint now) {
 // -------------------------------------------------------------------------
 
 void UavSupervisorTask::mapping_step(TimePoint now) {
+  if (have_state_) keep_map_window();
   hal::LidarScanView scan;
   if (lidar_.poll(scan) && have_state_) {
     const Pose3 sensor = predict_state(state_, scan.stamp, config_.max_odometry_prediction)
@@ -178,6 +179,15 @@ void UavSupervisorTask::mapping_step(TimePoint now) {
     flight_layer_at_ = now;
     refresh_flight_layer();
   }
+}
+
+// The map and the flight layer move together (the same lattice, the same place).
+void UavSupervisorTask::keep_map_window() {
+  const std::optional<Vec2> origin = window_move(
+      mapper_.geometry().layer(), state_.pose.p.head<2>(), std::nullopt, config_.map_window);
+  if (!origin || !mapper_.move_to(*origin).is_ok()) return;
+  (void)flight_layer_.move_to(*origin);
+  ++health_.window_moves;
 }
 
 // The UGVs as their fresh statuses say (if their estimators are initialised), for the team filter.

@@ -18,6 +18,7 @@ double sigma_major(const Mat2& cov) {
 
 // Faster than any UGV drives: a status claiming more is corrupt.
 constexpr double kMaxPlausibleSpeed_mps = 5.0;
+constexpr double kWindowGoalMargin_m = 1.0;  // see replan()
 
 bool plausible(const msg::NearbyUgv& u) {
   if (!std::isfinite(u.position_m[0]) || !std::isfinite(u.position_m[1])) return false;
@@ -288,6 +289,7 @@ void UgvNavTask::planning_step(TimePoint now) {
   // Persistent overruns (either loop): predict less far ahead rather than fall behind.
   health_.degradation = governor_.update();
   predictor_.set_horizon_scale(1.0 - 0.25 * health_.degradation);
+  keep_map_window();
   read_map_patches(now);
   read_other_ugvs(now);
   sum_stamp_counters();
@@ -327,6 +329,25 @@ void UgvNavTask::sum_stamp_counters() {
        {&wheel_stamps_, &uav_odometry_stamps_, &rpe_stamps_, &patch_stamps_, &nearby_stamps_})
     sum += g->counters();
   health_.stamps = sum;
+}
+
+// The map is a window of the site (limits.hpp) that moves with the robot: ahead towards the goal
+// when the robot nears its edge. Before the estimator starts, where the mission plan says the
+// robot is, so that the first patches land in it.
+void UgvNavTask::keep_map_window() {
+  Vec2 at;
+  if (ekf_.initialized()) {
+    at = ekf_.pose().p;
+  } else if (config_.has_start_guess) {
+    at = config_.start_guess.p;
+  } else {
+    return;
+  }
+  const std::optional<Vec2> origin =
+      window_move(map_.geometry(), at, std::optional<Vec2>(goal_), config_.map_window);
+  if (!origin || !map_.move_to(*origin).is_ok()) return;
+  ++health_.window_moves;
+  replan_requested_ = true;  // the plan was cut at the old window's edge
 }
 
 void UgvNavTask::read_map_patches(TimePoint now) {
@@ -426,7 +447,11 @@ void UgvNavTask::replan(TimePoint now) {
   last_plan_ = now;
   replan_requested_ = false;
   ++health_.plans;
-  const PlanResult r = planner_.plan(map_, ekf_.pose().p, goal_, others_plan_, path_);
+  // A goal beyond the map's window: plan to where the straight line to it leaves the window (a
+  // metre inside); the window moves on before the robot gets there.
+  const Vec2 here = ekf_.pose().p;
+  const Vec2 target = clip_into(map_.geometry(), here, goal_, kWindowGoalMargin_m);
+  const PlanResult r = planner_.plan(map_, here, target, others_plan_, path_);
   if (r != PlanResult::kOk || !trajectory_.build(path_, controller_.last_v(), config_.limits)) {
     ++health_.plan_failures;
     no_path_ = true;
@@ -505,9 +530,10 @@ void UgvNavTask::publish_request(msg::CollisionInfo& ci) {
 
 GoalResult UgvNavTask::request_goal(const Vec2& goal) {
   if (!all_finite(goal)) return GoalResult::kNotFinite;
-  const CellIndex c = map_.geometry().cell_of(goal);
-  if (!map_.geometry().contains(c)) return GoalResult::kOutsideMap;
-  if (map_.state(c) == CellState::kOccupied) return GoalResult::kInObstacle;
+  if (goal.cwiseAbs().maxCoeff() > limits::kMaxSiteHalf_m) return GoalResult::kOutsideMap;
+  // Beyond the map's window its cells are unknown (state() says so): not refused.
+  if (map_.state(map_.geometry().cell_of(goal)) == CellState::kOccupied)
+    return GoalResult::kInObstacle;
   goal_ = goal;
   arrived_ = false;
   aborted_ = false;

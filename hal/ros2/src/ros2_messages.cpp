@@ -205,6 +205,12 @@ GridMessage::GridMessage(const GridGeometry2d& geometry)
   msg_.data._length = msg_.data._maximum = static_cast<std::uint32_t>(cells_.size());
 }
 
+void GridMessage::set_origin(const Vec2& origin) {
+  geometry_ = GridGeometry2d(origin.x(), origin.y(), geometry_.resolution(), geometry_.cells_x(),
+                             geometry_.cells_y());
+  set_pose(msg_.info.origin, origin.x(), origin.y(), 0.0, 0.0);
+}
+
 void GridMessage::stamp_all(TimePoint stamp) {
   set_time(msg_.header.stamp, stamp);
   msg_.info.map_load_time = msg_.header.stamp;

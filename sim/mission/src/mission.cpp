@@ -206,14 +206,13 @@ class SupportLog final : public platform::SampleSink {
   MissionTrace* trace = nullptr;
 };
 
-// The ground cells the UAV never saw (within the arena), for the figure.
+// The ground cells the UAV never saw (within the arena and the UAV's map's window at the end:
+// on a site larger than the window, what it held), for the figure.
 void add_unknown_cells(const uav::UavSupervisorTask& uav, const sim::BoxWorld& w,
                        MissionTrace& trace) {
   const auto& g = uav.mapper().geometry();
-  const CellIndex lo =
-      g.layer().cell_of(Vec2(std::max(w.min_x_m, -18.0), std::max(w.min_y_m, -18.0)));
-  const CellIndex hi =
-      g.layer().cell_of(Vec2(std::min(w.max_x_m, 18.0), std::min(w.max_y_m, 18.0)));
+  const CellIndex lo = g.layer().cell_of(Vec2(w.min_x_m, w.min_y_m));
+  const CellIndex hi = g.layer().cell_of(Vec2(w.max_x_m, w.max_y_m));
   for (int y = std::max(lo.y, 0); y <= std::min(hi.y, g.cells_y() - 1); ++y) {
     for (int x = std::max(lo.x, 0); x <= std::min(hi.x, g.cells_x() - 1); ++x) {
       if (uav.sharer().classify(uav.mapper(), x, y) == CellState::kUnknown) {

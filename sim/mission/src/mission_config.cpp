@@ -1,5 +1,6 @@
 #include "colag/sim/mission/mission_config.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <cstdlib>
@@ -70,6 +71,32 @@ double start_y(int i) {
   return i < kPaperLanes ? 16.0 : 18.0;
 }
 
+// A generated site's field: the whole width, its length less kSiteEndBand_m at each end (where
+// the UGVs start and arrive, kSiteStartInset_m from the site's edge, as in the paper's layout).
+constexpr double kSiteEndBand_m = 5.0;
+constexpr double kSiteStartInset_m = 2.5;
+constexpr double kPaperArenaSide_m = 27.0;
+
+bool has_site(const MissionConfig& cfg) {
+  return cfg.site != Vec2::Zero();
+}
+
+}  // namespace
+
+Vec2 field_half(const MissionConfig& cfg) {
+  if (!has_site(cfg)) return Vec2::Constant(0.5 * kPaperArenaSide_m);
+  return Vec2(0.5 * cfg.site.x(), 0.5 * cfg.site.y() - kSiteEndBand_m);
+}
+
+namespace {
+
+// A count given for the paper's 27 x 27 m arena, for this mission's field: the same density.
+std::size_t per_field(const MissionConfig& cfg, std::size_t paper_count) {
+  const Vec2 h = field_half(cfg);
+  return static_cast<std::size_t>(std::llround(static_cast<double>(paper_count) * 4.0 * h.x() *
+                                               h.y() / (kPaperArenaSide_m * kPaperArenaSide_m)));
+}
+
 }  // namespace
 
 bool check(const MissionConfig& cfg, std::string& error) {
@@ -77,6 +104,18 @@ bool check(const MissionConfig& cfg, std::string& error) {
     error = e;
     return false;
   };
+  if (has_site(cfg)) {
+    const double w = cfg.site.x(), h = cfg.site.y();
+    if (cfg.scenario == "file")
+      return fail("--site sizes the generated scenarios (a map file has its own size)");
+    if (!(w >= 10.0 && h >= 20.0 && w <= 2.0 * limits::kMaxSiteHalf_m &&
+          h <= 2.0 * limits::kMaxSiteHalf_m))
+      return fail("--site must be at least 10 x 20 m and at most " +
+                  std::to_string(static_cast<int>(2.0 * limits::kMaxSiteHalf_m)) + " m a side");
+    if (cfg.placements.empty() && w / cfg.ugvs < 2.0)
+      return fail("--site is too narrow for " + std::to_string(cfg.ugvs) +
+                  " UGVs side by side (2 m each)");
+  }
   if (cfg.ugvs < 1 || cfg.ugvs > static_cast<int>(limits::kMaxUgvs)) {
     return fail("--ugvs must be in 1.." + std::to_string(limits::kMaxUgvs));
   }
@@ -124,7 +163,8 @@ bool build_world(const MissionConfig& cfg, sim::BoxWorld& world, std::string& er
   };
   if (is_box_field(cfg.scenario)) {
     sim::MapGenConfig gen;
-    gen.boxes = cfg.boxes > 0 ? cfg.boxes : cfg.scenario == "sparse" ? 40 : 80;
+    gen.boxes = per_field(cfg, cfg.boxes > 0 ? cfg.boxes : cfg.scenario == "sparse" ? 40 : 80);
+    gen.arena_half = field_half(cfg);
     gen.pillars = cfg.scenario == "pillars";  // 80 pillars, 0.2-0.5 m wide, 0.6-1.2 m tall
     gen.seed = cfg.seed;
     return generated(sim::generate_box_world(gen));
@@ -132,6 +172,15 @@ bool build_world(const MissionConfig& cfg, sim::BoxWorld& world, std::string& er
   if (cfg.scenario == "rooms") {
     sim::RoomGenConfig gen = cfg.rooms;
     gen.seed = cfg.seed;
+    if (has_site(cfg)) {  // rooms of the same size, furniture as dense
+      const Vec2 h = field_half(cfg);
+      gen.rooms_x =
+          std::max(1, static_cast<int>(std::lround(gen.rooms_x * 2.0 * h.x() / kPaperArenaSide_m)));
+      gen.rooms_y =
+          std::max(1, static_cast<int>(std::lround(gen.rooms_y * 2.0 * h.y() / kPaperArenaSide_m)));
+      gen.furniture = per_field(cfg, gen.furniture);
+      gen.arena_half = h;
+    }
     return generated(sim::generate_room_world(gen));
   }
   if (cfg.scenario == "file") {
@@ -163,6 +212,17 @@ Vec2 ugv_goal(int i) {
 Vec3 uav_start() {
   return kUavStart;
 }
+void lay_out_site(MissionConfig& cfg) {
+  // Too narrow a site is left to check(), which says so.
+  if (!has_site(cfg) || !cfg.placements.empty() || cfg.site.x() / cfg.ugvs < 2.0) return;
+  const double w = cfg.site.x(), y = 0.5 * cfg.site.y() - kSiteStartInset_m;
+  for (int i = 0; i < cfg.ugvs; ++i) {
+    const double x = -0.5 * w + (i + 0.5) * w / cfg.ugvs;
+    cfg.placements.push_back({Pose2{Vec2(x, y), -M_PI / 2}, Vec2(x, -y)});
+  }
+  cfg.uav_start = Vec3(0.0, y - 1.0, 1.0);
+}
+
 Pose2 ugv_start(const MissionConfig& cfg, int i) {
   return cfg.placements.empty() ? ugv_start(i)
                                 : cfg.placements.at(static_cast<std::size_t>(i)).start;

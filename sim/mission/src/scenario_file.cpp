@@ -7,38 +7,42 @@
 #include <cstdio>
 
 #include "colag/board/yaml_reader.hpp"
-#include "colag/common/grid2d.hpp"
+#include "colag/common/limits.hpp"
 #include "colag/sim/mission/world_file.hpp"
 
 namespace colag::mission {
 
 namespace {
 constexpr double kMinStartSeparation_m = 1.0;  // two bodies (0.3 m radius) and a margin
-constexpr double kEdgeMargin_m = 1.0;          // a UGV's body and its inflation inside the map
 
+// The firmware's maps are windows that move over the site (map_window.hpp): any place within
+// limits::kMaxSiteHalf_m of the world frame's origin.
 bool inside_maps(const Vec2& p) {
-  const GridGeometry2d& g = kWorldGrid2d;
-  const Vec2 lo(g.origin_x() + kEdgeMargin_m, g.origin_y() + kEdgeMargin_m);
-  const Vec2 hi(g.origin_x() + g.cells_x() * g.resolution() - kEdgeMargin_m,
-                g.origin_y() + g.cells_y() * g.resolution() - kEdgeMargin_m);
-  return (p.array() >= lo.array()).all() && (p.array() <= hi.array()).all();
+  return p.cwiseAbs().maxCoeff() <= limits::kMaxSiteHalf_m;
 }
 
 std::string outside_text(const Vec2& p) {
-  const GridGeometry2d& g = kWorldGrid2d;
-  char text[240];
+  char text[160];
   std::snprintf(text, sizeof text,
-                "(%.1f, %.1f) is outside what the firmware's maps cover (x %.0f..%.0f, y "
-                "%.0f..%.0f, less %.0f m at the edges); larger sites are not supported yet",
-                p.x(), p.y(), g.origin_x(), g.origin_x() + g.cells_x() * g.resolution(),
-                g.origin_y(), g.origin_y() + g.cells_y() * g.resolution(), kEdgeMargin_m);
+                "(%.1f, %.1f) is beyond the largest site (%.0f m from the origin)", p.x(), p.y(),
+                limits::kMaxSiteHalf_m);
   return text;
 }
+
 // A generator's parameters: `boxes` for the box and pillar fields; `rooms: [x, y]`, `door_m`
 // and `furniture` for rooms. Each only with its generator.
 void read_generator_parameters(board::Reader& r, const YAML::Node& map, MissionConfig& c) {
   const bool rooms = c.scenario == "rooms";
   const bool field = is_box_field(c.scenario);
+  if (r.ok() && map["site"] && !(field || rooms))
+    r.fail("map.site", "sizes a generated map (a PCD has its own size)");
+  if (double site[2] = {}; r.ok() && r.vector(map, "map", "site", site, 2)) {
+    if (!(site[0] >= 10.0 && site[1] >= 20.0 && site[0] <= 2.0 * limits::kMaxSiteHalf_m &&
+          site[1] <= 2.0 * limits::kMaxSiteHalf_m))
+      r.fail("map.site", "expected [width_m, length_m], at least [10, 20]");
+    else
+      c.site = Vec2(site[0], site[1]);
+  }
   for (const char* key : {"boxes", "rooms", "door_m", "furniture"}) {
     if (!r.ok() || !map[key]) continue;
     if ((std::string(key) == "boxes" && !field) || (std::string(key) != "boxes" && !rooms))
@@ -82,7 +86,8 @@ bool load_scenario_file(const std::string& file, MissionConfig& cfg, std::string
 
   const YAML::Node map = board::child(root, "map");
   r.require(root, "", "map");
-  r.only(map, "map", {"generator", "pcd", "units", "boxes", "rooms", "door_m", "furniture"});
+  r.only(map, "map",
+         {"generator", "pcd", "units", "site", "boxes", "rooms", "door_m", "furniture"});
   std::string generator, pcd, units = "m";
   r.get(map, "map", "generator", generator);
   r.get(map, "map", "pcd", pcd);
@@ -95,11 +100,11 @@ bool load_scenario_file(const std::string& file, MissionConfig& cfg, std::string
       r.fail("map.generator", "expected sparse, dense, pillars or rooms");
     c.scenario = generator;
   }
-  read_generator_parameters(r, map, c);
   if (r.ok() && !pcd.empty()) {
     c.scenario = "file";
     c.map_file = board::relative_to(file, pcd);
   }
+  read_generator_parameters(r, map, c);
   if (r.ok() && units != "m")
     r.fail("map.units", "only m (metres) is supported: convert the map (x, y, z in metres)");
 
@@ -117,7 +122,8 @@ bool load_scenario_file(const std::string& file, MissionConfig& cfg, std::string
   const YAML::Node uav = board::child(root, "uav");
   r.only(uav, "uav", {"start"});
   double u[3] = {c.uav_start.x(), c.uav_start.y(), c.uav_start.z()};
-  if (r.vector(uav, "uav", "start", u, 3)) {
+  const bool uav_given = r.vector(uav, "uav", "start", u, 3);
+  if (uav_given) {
     if (!inside_maps(Vec2(u[0], u[1]))) r.fail("uav.start", outside_text(Vec2(u[0], u[1])));
     if (!(u[2] >= 0.5 && u[2] <= 10.0)) r.fail("uav.start", "its height must be in 0.5..10 m");
     c.uav_start = Vec3(u[0], u[1], u[2]);
@@ -125,12 +131,22 @@ bool load_scenario_file(const std::string& file, MissionConfig& cfg, std::string
 
   const YAML::Node ugvs = board::child(root, "ugvs");
   r.require(root, "", "ugvs");
-  if (r.ok() && (!ugvs.IsSequence() || ugvs.size() < 1 || ugvs.size() > limits::kMaxUgvs)) {
+  c.placements.clear();
+  if (r.ok() && ugvs.IsScalar()) {
+    // A count: the generated site's layout (side by side along its north edge).
+    int count = 0;
+    r.get(root, "", "ugvs", count, 1, static_cast<int>(limits::kMaxUgvs));
+    if (r.ok() && c.site == Vec2::Zero())
+      r.fail("ugvs", "a number of UGVs needs map.site (else list each {start, goal})");
+    c.ugvs = count;
+    if (std::string why; r.ok() && !check(c, why)) r.fail("ugvs", why);
+    lay_out_site(c);
+    if (uav_given) c.uav_start = Vec3(u[0], u[1], u[2]);
+  } else if (r.ok() && (!ugvs.IsSequence() || ugvs.size() < 1 || ugvs.size() > limits::kMaxUgvs)) {
     r.fail("ugvs", "expected a list of 1.." + std::to_string(limits::kMaxUgvs) +
                        " UGVs, each {start: [x, y, yaw_deg], goal: [x, y]}");
   }
-  c.placements.clear();
-  for (std::size_t i = 0; r.ok() && i < ugvs.size(); ++i) {
+  for (std::size_t i = 0; r.ok() && ugvs.IsSequence() && i < ugvs.size(); ++i) {
     const std::string path = "ugvs[" + std::to_string(i) + "]";
     const YAML::Node ugv = ugvs[i];
     r.only(ugv, path, {"start", "goal"});
@@ -152,7 +168,7 @@ bool load_scenario_file(const std::string& file, MissionConfig& cfg, std::string
     }
     c.placements.push_back(p);
   }
-  c.ugvs = static_cast<int>(c.placements.size());
+  if (ugvs.IsSequence()) c.ugvs = static_cast<int>(c.placements.size());
 
   const YAML::Node faults = board::child(root, "faults");
   r.only(faults, "faults",

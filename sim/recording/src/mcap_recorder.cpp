@@ -196,6 +196,7 @@ void McapRecorder::record_ugv(const Mission& m, std::size_t i, int tick) {
   }
   if (tick % kTicksPerMap == 0) {
     const MapStore& map = task.map();
+    u.map_msg.set_origin(Vec2(map.geometry().origin_x(), map.geometry().origin_y()));
     u.map_msg.fill(m.now(), [&](CellIndex c) { return occupancy_value(map.state(c)); });
     r.put(u.map, &u.map_msg.sample(), m.now());
   }
@@ -219,6 +220,8 @@ void McapRecorder::record_uav(const Mission& m, int tick) {
     r.put(a.status, &a.status_msg.sample(), m.now());
   }
   if (tick % kTicksPerMap == 0) {
+    const GridGeometry3d& g = task.mapper().geometry();
+    a.map_msg.set_origin(Vec2(g.origin_x(), g.origin_y()));
     a.map_msg.fill(m.now(), [&](CellIndex c) {
       return occupancy_value(task.sharer().classify(task.mapper(), c.x, c.y));
     });

@@ -24,20 +24,24 @@ bool BoxWorld::occupied(const Vec3& p) const {
 
 Result<BoxWorld> generate_box_world(const MapGenConfig& config) {
   BoxWorld world;
-  world.min_x_m = world.min_y_m = -config.arena_half_m;
-  world.max_x_m = world.max_y_m = config.arena_half_m;
+  const Vec2 half = config.arena_half;
+  world.min_x_m = -half.x();
+  world.max_x_m = half.x();
+  world.min_y_m = -half.y();
+  world.max_y_m = half.y();
   Rng rng(config.seed);
-  const auto grid_steps =
-      static_cast<std::uint64_t>(std::llround(2.0 * config.arena_half_m / 0.1)) + 1;
+  const auto steps = [](double h) {
+    return static_cast<std::uint64_t>(std::llround(2.0 * h / 0.1)) + 1;
+  };
   const std::size_t max_attempts = 10000 * (config.boxes + 1);
   for (std::size_t attempt = 0; attempt < max_attempts && world.boxes.size() < config.boxes;
        ++attempt) {
     // Centres on the 0.1 m grid, as in the paper's maps. Two statements: the order in which a
     // constructor's arguments are evaluated is unspecified (GCC drew y first on x86-64 and x
     // first on aarch64: the same seed gave another map on a board). y first, as the shipped maps.
-    const double ky = static_cast<double>(rng.below(grid_steps));
-    const double kx = static_cast<double>(rng.below(grid_steps));
-    const Vec2 c(-config.arena_half_m + 0.1 * kx, -config.arena_half_m + 0.1 * ky);
+    const double ky = static_cast<double>(rng.below(steps(half.y())));
+    const double kx = static_cast<double>(rng.below(steps(half.x())));
+    const Vec2 c(-half.x() + 0.1 * kx, -half.y() + 0.1 * ky);
     bool ok = true;
     for (const Box& b : world.boxes) {
       if ((b.center - c).norm() < config.min_center_distance_m) {

@@ -69,7 +69,11 @@ bool UavRos2Bridge::start(std::uint32_t domain, const board::Ros2Config& config,
 
 void UavRos2Bridge::step(TimePoint now) {
   // A slice of the map view's rows (the classification reads the 3-D map: too long for one step).
-  const GridGeometry2d g = kWorldGrid3d.layer();
+  const GridGeometry2d g = task_.mapper().geometry().layer();
+  if (const Vec2 o(g.origin_x(), g.origin_y()); o != sweep_origin_) {
+    sweep_origin_ = o;  // the window moved: rows swept so far show another place
+    sweep_row_ = 0;
+  }
   for (int k = 0; k < rows_per_step_ && sweep_row_ < g.cells_y(); ++k, ++sweep_row_)
     for (int x = 0; x < g.cells_x(); ++x)
       sweep_[g.index({x, sweep_row_})] = task_.sharer().classify(task_.mapper(), x, sweep_row_);
@@ -85,7 +89,10 @@ void UavRos2Bridge::step(TimePoint now) {
     s.new_plan = !plan_sent_ || plan.seq != plan_seq_;
     if (s.new_plan) s.plan = plan;
     s.map = sweep_done;
-    if (s.map) std::copy(sweep_.begin(), sweep_.end(), s.cells.begin());
+    if (s.map) {
+      std::copy(sweep_.begin(), sweep_.end(), s.cells.begin());
+      s.origin = sweep_origin_;
+    }
   });
   if (!offered) {
     skipped_.fetch_add(1);
@@ -121,6 +128,7 @@ void UavRos2Bridge::publish(const Snapshot& s) {
   }
   if (s.map) {
     std::size_t i = 0;
+    map_.set_origin(s.origin);
     map_.fill(o.stamp, [&](CellIndex) { return hal::ros2::occupancy_value(s.cells[i++]); });
     write(map_w_, &map_.sample());
   }

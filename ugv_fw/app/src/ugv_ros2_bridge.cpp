@@ -94,6 +94,7 @@ void UgvRos2Bridge::step(TimePoint now) {
     if (s.map) {
       next_map_ = now + map_period_;
       const std::span<const CellState> cells = task_.map().cells();
+      s.origin = Vec2(task_.map().geometry().origin_x(), task_.map().geometry().origin_y());
       std::copy(cells.begin(), cells.end(), s.cells.begin());
     }
     if (std::unique_lock<std::mutex> g(input_mutex_, std::try_to_lock); g.owns_lock()) {
@@ -174,6 +175,7 @@ void UgvRos2Bridge::publish(const Snapshot& s) {
   }
   if (s.map) {
     std::size_t i = 0;
+    map_.set_origin(s.origin);
     map_.fill(s.status.stamp, [&](CellIndex) { return hal::ros2::occupancy_value(s.cells[i++]); });
     write(map_w_, &map_.sample());
   }

@@ -16,7 +16,9 @@ inline constexpr std::size_t kMaxNearbyUgvs = 12;        // other UGVs the UAV r
 
 // --- World grids (UAV 3-D map, UGV 2-D map) ----------------------------------------------------
 inline constexpr double kGridResolution_m = 0.1;
-inline constexpr double kGridOriginX_m = -20.0;  // grid covers [-20, 20] x [-20, 20] x [0, 3] m
+// Each map is a window of this size that moves over the site with its robot (map_window.hpp);
+// it starts at this origin, covering [-20, 20] x [-20, 20] x [0, 3] m.
+inline constexpr double kGridOriginX_m = -20.0;
 inline constexpr double kGridOriginY_m = -20.0;
 inline constexpr double kGridOriginZ_m = 0.0;
 inline constexpr int kGridCellsX = 400;
@@ -24,6 +26,10 @@ inline constexpr int kGridCellsY = 400;
 inline constexpr int kGridCellsZ = 30;
 inline constexpr std::size_t kGridCells2d = std::size_t{kGridCellsX} * kGridCellsY;
 inline constexpr std::size_t kGridCells3d = kGridCells2d * kGridCellsZ;
+// Sites span at most this far from the world frame's origin along x or y (goals beyond it are
+// refused): far more than a battery's range, close enough that every float32 position on the
+// wire stays exact to a millimetre.
+inline constexpr double kMaxSiteHalf_m = 10'000.0;
 
 // --- Map sharing -------------------------------------------------------------------------------
 inline constexpr int kMaxPatchSideCells = 64;  // 6.4 m: the 5 m send box plus rounding margin

@@ -1,11 +1,11 @@
 #pragma once
-// The UAV's 3-D occupancy map (paper Sec. III-B): a log-odds voxel grid at 0.1 m over the
-// limits-header extent, in static storage. Each LiDAR ray is traced with an exact voxel
-// traversal (Amanatides-Woo): the voxels it crosses become more likely free, the voxel of its
-// return more likely occupied. Within one scan a voxel is updated at most once, and a return
-// wins over a crossing (as OctoMap does), so thousands of rays crossing the space around the
-// sensor do not wipe out an obstacle seen in the same scan. Never-observed voxels stay unknown:
-// occlusion shadows behind obstacles and the blind cone under the sensor.
+// The UAV's 3-D occupancy map (paper Sec. III-B): a log-odds voxel grid at 0.1 m of the
+// limits-header size, in static storage: a window of the site that moves with the UAV. Each LiDAR
+// ray is traced with an exact voxel traversal (Amanatides-Woo): the voxels it crosses become more
+// likely free, the voxel of its return more likely occupied. Within one scan a voxel is updated at
+// most once, and a return wins over a crossing (as OctoMap does), so thousands of rays crossing the
+// space around the sensor do not wipe out an obstacle seen in the same scan. Never-observed voxels
+// stay unknown: occlusion shadows behind obstacles and the blind cone under the sensor.
 //
 // Log-odds are stored as int8 in units of 1/50 (exact, deterministic integer updates):
 // defaults p_hit 0.85, p_miss 0.35, clamped to [0.12, 0.90], occupied at >= 0.80.
@@ -24,6 +24,7 @@
 #include "colag/common/fork_join.hpp"
 #include "colag/common/grid3d.hpp"
 #include "colag/common/static_vector.hpp"
+#include "colag/common/status.hpp"
 #include "colag/hal/lidar.hpp"
 
 namespace colag::uav {
@@ -88,7 +89,13 @@ class Mapper {
   // free (it was not the robot). Returns how many voxels were forgotten.
   std::size_t forget(const Vec2& centre, double radius_m, double z_low_m, double z_high_m);
 
-  const GridGeometry3d& geometry() const { return kWorldGrid3d; }
+  // The window of the site this map holds: limits' size, at kWorldGrid3d's place until moved.
+  const GridGeometry3d& geometry() const { return geometry_; }
+  // Moves the window (horizontally) so that its corner is at `origin`, on the grid's lattice:
+  // the voxels it keeps keep their log-odds, the voxels that enter it are unknown (~2 ms for
+  // the whole grid: for a UAV that nears its window's edge, not for every scan). Refused (map
+  // unchanged) off the lattice or not finite.
+  Status move_to(const Vec2& origin);
   VoxelState state(VoxelIndex v) const;
   // One x-row of raw log-odds (cells_x values) for fast, cache-friendly scans of a layer.
   const std::int8_t* row(int y, int z) const { return &logodds_[geometry().index({0, y, z})]; }
@@ -174,6 +181,7 @@ class Mapper {
 
   MapperConfig config_;
   ForkJoin* fork_join_;
+  GridGeometry3d geometry_ = kWorldGrid3d;
   int reach_;  // voxels a ray can reach from the sensor's along x or y (max range + margin)
   std::int8_t hit_, miss_, weak_miss_, min_, max_, occupied_;
   MapperCounters counters_;

@@ -10,8 +10,10 @@
 // step(); malformed inputs are rejected and counted in health().
 #include <array>
 #include <cstdint>
+#include <optional>
 
 #include "colag/common/map_store.hpp"
+#include "colag/common/map_window.hpp"
 #include "colag/common/stamp_gate.hpp"
 #include "colag/hal/flight_controller.hpp"
 #include "colag/hal/lidar.hpp"
@@ -76,6 +78,9 @@ struct UavSupervisorConfig {
   double commit_radius_m = 3.0;     // this close to the current stop, the schedule keeps it
   double uav_radius_m = 0.3;        // flight-layer inflation
   double flight_band_half_m = 0.5;  // flight layer: obstacles within +- this of the altitude
+  // The 3-D map and the flight layer are windows of the site (limits.hpp) that move with the
+  // UAV: once it is within a metre of an edge, by enough that it is 10 m inside.
+  WindowPolicy map_window{.edge_m = 10.0, .hard_edge_m = 1.0};
   Duration flight_layer_period = std::chrono::seconds(1);
   Duration plan_publish_period = std::chrono::seconds(1);
   Duration max_future_skew = std::chrono::milliseconds(200);
@@ -99,8 +104,9 @@ struct UavHealth {
   std::uint64_t schedules = 0;
   std::uint64_t schedules_exact = 0;
   std::uint64_t hover_timeouts = 0;
-  std::uint64_t flight_lost = 0;  // times the flight controller left the mission
-  StampCounters stamps;           // every input stream's stamp checks, summed (scheduling loop)
+  std::uint64_t flight_lost = 0;   // times the flight controller left the mission
+  std::uint64_t window_moves = 0;  // the maps' window moved with the UAV
+  StampCounters stamps;            // every input stream's stamp checks, summed (scheduling loop)
 };
 
 class UavSupervisorTask {
@@ -170,6 +176,7 @@ class UavSupervisorTask {
   void read_statuses(TimePoint now);
   void solve(TimePoint now);
   bool choose_target(TimePoint now, Vec2& target);
+  void keep_map_window();
   void refresh_flight_layer();
   void filter_team(TimePoint now);
   void publish_plan(TimePoint now, bool changed);

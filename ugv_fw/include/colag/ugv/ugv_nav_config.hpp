@@ -2,6 +2,7 @@
 // Every parameter of the UGV navigation task, with the defaults of DESIGN.md / the paper.
 #include "colag/common/geometry.hpp"
 #include "colag/common/map_store.hpp"
+#include "colag/common/map_window.hpp"
 #include "colag/common/planner.hpp"
 #include "colag/common/time.hpp"
 #include "colag/common/ugv_ekf.hpp"
@@ -29,6 +30,7 @@ struct UgvNavConfig {
   double body_radius_m = 0.25;
   UgvEkfConfig ekf;
   MapStoreConfig map;
+  WindowPolicy map_window;  // when the map's window moves with the robot (map_window.hpp)
   PlannerConfig planner;
   TrajectoryLimits limits;
   ControllerConfig controller;

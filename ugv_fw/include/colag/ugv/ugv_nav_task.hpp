@@ -40,6 +40,7 @@ struct UgvHealth {
   std::uint64_t uav_unavailable = 0;  // times the UAV said its flight controller left the mission
   std::uint64_t plans = 0;
   std::uint64_t plan_failures = 0;
+  std::uint64_t window_moves = 0;  // the map's window moved with the robot (map_window.hpp)
   std::uint64_t support_messages = 0;
   std::uint64_t overruns = 0;  // steps of either loop over budget (real-time executor only)
   int degradation = 0;         // OverrunGovernor level: 0 = full prediction horizon
@@ -55,7 +56,7 @@ struct UgvHealth {
 enum class GoalResult : std::uint8_t {
   kAccepted = 0,
   kNotFinite = 1,
-  kOutsideMap = 2,  // outside the map's grid: it could never plan there
+  kOutsideMap = 2,  // beyond limits::kMaxSiteHalf_m of the world frame's origin
   kInObstacle = 3,  // on a cell its map knows occupied
   kWrongFrame = 4,  // (from the ROS 2 bridge) not in the fleet's world frame
 };
@@ -66,7 +67,7 @@ inline const char* to_string(GoalResult r) {
     case GoalResult::kNotFinite:
       return "refused: not a finite position";
     case GoalResult::kOutsideMap:
-      return "refused: outside the map";
+      return "refused: outside the site";
     case GoalResult::kInObstacle:
       return "refused: inside an obstacle";
     case GoalResult::kWrongFrame:
@@ -175,6 +176,7 @@ class UgvNavTask {
   void read_relative_poses(TimePoint now);
   void drive(TimePoint now, double dt_s);
   // planning loop parts
+  void keep_map_window();
   void read_map_patches(TimePoint now);
   void read_other_ugvs(TimePoint now);
   void collect_others(TimePoint now);

@@ -11,6 +11,7 @@
 #include <optional>
 #include <string>
 
+#include "colag/common/geometry.hpp"
 #include "colag/hal/can/base_config.hpp"
 
 namespace colag::sim {
@@ -24,6 +25,33 @@ inline CLI::Option* add_ugv_base_option(CLI::App& app, hal::can::BaseProtocol& o
           "the UGVs' bases: colag (our wheel protocol, default), odrive (two ODrive axes, CAN "
           "Simple) or agilex_v2 (an AgileX base, protocol V2)")
       ->check(CLI::IsMember({"colag", "odrive", "agilex_v2"}));
+}
+
+// --site WxH: the size of a generated site, metres (mission::MissionConfig::site).
+inline CLI::Option* add_site_option(CLI::App& app, Vec2& out) {
+  const auto parse = [](const std::string& s, Vec2& v) {
+    const auto x = s.find('x');
+    if (x == std::string::npos || x == 0 || x + 1 == s.size()) return false;
+    char* end = nullptr;
+    const double w = std::strtod(s.c_str(), &end);
+    if (end != s.c_str() + x) return false;
+    const double h = std::strtod(s.c_str() + x + 1, &end);
+    if (*end != '\0' || !(w > 0.0 && h > 0.0 && w < 1e9 && h < 1e9)) return false;
+    v = Vec2(w, h);
+    return true;
+  };
+  return app
+      .add_option_function<std::string>(
+          "--site", [&out, parse](const std::string& s) { (void)parse(s, out); },
+          "a generated site of W x H metres (e.g. 200x200): the scenario's obstacles at the same "
+          "density over it, the UGVs side by side along its north edge driving to the south one")
+      ->check(CLI::Validator(
+          [parse](std::string& s) -> std::string {
+            Vec2 v;
+            return parse(s, v) ? std::string{}
+                               : "expected WxH in metres, e.g. 200x60, got '" + s + "'";
+          },
+          "WxH"));
 }
 
 template <class Run>

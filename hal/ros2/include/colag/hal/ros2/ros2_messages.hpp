@@ -109,6 +109,8 @@ class GridMessage : NoCopy {
       for (int x = 0; x < geometry_.cells_x(); ++x)
         cells_[i++] = value(CellIndex{x, y});
   }
+  // The grid's corner (cell (0, 0)) now: the robots' maps are windows that move over the site.
+  void set_origin(const Vec2& origin);
   static constexpr std::int8_t kUnknown = -1, kFree = 0, kOccupied = 100;
   const nav_msgs_msg_dds__OccupancyGrid_& sample() const { return msg_; }
 

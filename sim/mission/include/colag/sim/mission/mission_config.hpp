@@ -70,7 +70,11 @@ struct MissionConfig {
   std::string map_file;      // PCD, when scenario == "file"
   std::size_t boxes = 0;     // boxes or pillars of a generated field; 0: the scenario's number
   sim::RoomGenConfig rooms;  // "rooms" (its seed is the mission's)
-  int ugvs = 3;              // 1 .. limits::kMaxUgvs
+  // A generated site of W x H m (--site; zero: the paper's 27 m arena and layout): the field
+  // fills it but for 5 m at each end in y, where the UGVs start side by side (north) and arrive
+  // (south). Counts of boxes, rooms and furniture are per 27 x 27 m and scale with the field.
+  Vec2 site = Vec2::Zero();
+  int ugvs = 3;  // 1 .. limits::kMaxUgvs
   // Each UGV's start and goal (a scenario file's), `ugvs` of them; empty: the paper's layout.
   std::vector<UgvPlacement> placements;
   Vec3 uav_start = Vec3(0.0, 15.0, 1.0);
@@ -100,6 +104,11 @@ bool check(const MissionConfig& cfg, std::string& error);
 Pose2 ugv_start(int i);
 Vec2 ugv_goal(int i);
 Vec3 uav_start();
+// With a site and no placements: the site's layout (above) as placements, and the UAV's start
+// behind the middle of the line.
+void lay_out_site(MissionConfig& cfg);
+// The half extents of the generated field (the paper's 13.5 m without a site).
+Vec2 field_half(const MissionConfig& cfg);
 // This mission's: its placements, or the paper's layout.
 Pose2 ugv_start(const MissionConfig& cfg, int i);
 Vec2 ugv_goal(const MissionConfig& cfg, int i);

@@ -40,8 +40,8 @@ struct BoxWorld {
 };
 
 struct MapGenConfig {
-  std::size_t boxes = 80;  // 40 = the paper's sparse map, 80 = dense
-  double arena_half_m = 13.5;
+  std::size_t boxes = 80;                  // 40 = the paper's sparse map, 80 = dense
+  Vec2 arena_half = Vec2::Constant(13.5);  // the field: [-x, x] x [-y, y]
   double min_center_distance_m = 1.5;
   double small_fraction = 0.56;  // share of 0.7 m boxes; the rest are 0.9 m
   double small_side_m = 0.7;

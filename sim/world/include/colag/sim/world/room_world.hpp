@@ -15,7 +15,7 @@ namespace colag::sim {
 struct RoomGenConfig {
   int rooms_x = 3;  // rooms along x and along y
   int rooms_y = 3;
-  double arena_half_m = 13.5;
+  Vec2 arena_half = Vec2::Constant(13.5);  // the building: [-x, x] x [-y, y]
   double wall_thickness_m = 0.2;
   double wall_height_m = 1.2;
   double door_m = 1.6;         // doorway width

@@ -49,6 +49,7 @@ class UavRos2Bridge final : public platform::Task {
     std::uint64_t flight_lost = 0;
     bool status = false, new_plan = false, map = false;
     std::vector<CellState> cells;  // the 2-D view, a full sweep
+    Vec2 origin = Vec2::Zero();    // of the map's window during the sweep
   };
   void publish(const Snapshot& s);
 
@@ -59,6 +60,7 @@ class UavRos2Bridge final : public platform::Task {
   // The map view, swept a slice of rows per step on the task's thread.
   std::vector<CellState> sweep_;
   int sweep_row_ = 0, rows_per_step_ = 1;
+  Vec2 sweep_origin_ = Vec2::Zero();  // the map's window the sweep reads (it restarts if it moves)
   std::uint32_t plan_seq_ = 0;
   bool plan_sent_ = false;
 

@@ -65,6 +65,7 @@ class UgvRos2Bridge final : public platform::Task {
     Trajectory trajectory;
     Prediction prediction;
     std::vector<CellState> cells;  // the map store's cells (MapStore::cells)
+    Vec2 origin = Vec2::Zero();    // of its window
     std::uint32_t goals = 0;       // goals taken so far, and the answer to the last
     GoalResult last_goal = GoalResult::kAccepted;
     std::uint32_t commands = 0;  // commands taken so far, and the last one with its answer
