@@ -53,6 +53,13 @@ std::optional<Vec2> window_move(const GridGeometry2d& g, const Vec2& at,
     return std::nullopt;
   const Box b = shrunk(g, 0.0);
   const Vec2 size = b.hi - b.lo;
+  // Where it is already (a robot standing still where rounding keeps it near the edge): stay.
+  const auto same_or = [&](const Vec2& o) -> std::optional<Vec2> {
+    if (std::abs(o.x() - g.origin_x()) < 0.5 * g.resolution() &&
+        std::abs(o.y() - g.origin_y()) < 0.5 * g.resolution())
+      return std::nullopt;
+    return o;
+  };
   if (!toward) {
     // Along each axis where the robot is too close to an edge: just enough that it is edge_m
     // inside (moves of several metres, and most of what the window held stays in it).
@@ -62,13 +69,15 @@ std::optional<Vec2> window_move(const GridGeometry2d& g, const Vec2& at,
       if (at[k] - b.lo[k] < policy.hard_edge_m) shift[k] = (at[k] - b.lo[k]) - keep[k];
       if (b.hi[k] - at[k] < policy.hard_edge_m) shift[k] = keep[k] - (b.hi[k] - at[k]);
     }
-    return origin_centred_at(g, 0.5 * (b.lo + b.hi) + shift);
+    return same_or(origin_centred_at(g, 0.5 * (b.lo + b.hi) + shift));
   }
-  const double lead = std::max(0.5 * std::min(size.x(), size.y()) - policy.edge_m, 0.0);
+  // The robot a metre more than edge_m from the trailing edge: the lattice's rounding never
+  // leaves it just short of edge_m (which would move the window again at once).
+  const double lead = std::max(0.5 * std::min(size.x(), size.y()) - policy.edge_m - 1.0, 0.0);
   const Vec2 d = *toward - at;
   const double n = d.norm();
-  if (n <= 2.0 * lead) return origin_centred_at(g, at + 0.5 * d);
-  return origin_centred_at(g, at + (lead / n) * d);
+  return same_or(n <= 2.0 * lead ? origin_centred_at(g, at + 0.5 * d)
+                                 : origin_centred_at(g, at + (lead / n) * d));
 }
 
 Vec2 clip_into(const GridGeometry2d& g, const Vec2& from, const Vec2& to, double margin_m) {
