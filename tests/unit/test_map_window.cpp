@@ -69,7 +69,7 @@ TEST(MapWindow, LeadsTowardsAFarGoalAndFollowsARobotAllTheWay) {
     EXPECT_GE(inset_in(g, at), p.hard_edge_m);
   }
   EXPECT_GE(least_inset, p.edge_m - 0.2);
-  EXPECT_GE(inset_in(g, goal), 0.0);       // the goal's window at the end
+  EXPECT_GE(inset_in(g, goal), 0.0);  // the goal's window at the end
   // Moves of ~(40 - 2 * 8) / 0.8 m along the diagonal: far from one per step.
   EXPECT_GE(moves, 5);
   EXPECT_LE(moves, 14);

@@ -30,10 +30,11 @@ double inset_in(const GridGeometry2d& g, const Vec2& p);
 Vec2 origin_centred_at(const GridGeometry2d& g, const Vec2& centre);
 
 // Where the window of a robot at `at`, heading for `toward` (if it has a destination), should
-// have its origin; nothing when it should stay (or would land where it is). With a destination: moved, it holds both when
-// they are close enough to both lie edge_m inside, else the robot edge_m + 1 m from the trailing
-// side, towards `toward`. Without (the UAV, which flies everywhere): it moves along each axis where
-// the robot is within hard_edge_m of an edge, just enough that it is edge_m inside.
+// have its origin; nothing when it should stay (or would land where it is). With a destination:
+// moved, it holds both when they are close enough to both lie edge_m inside, else the robot edge_m
+// + 1 m from the trailing side, towards `toward`. Without (the UAV, which flies everywhere): it
+// moves along each axis where the robot is within hard_edge_m of an edge, just enough that it is
+// edge_m inside.
 std::optional<Vec2> window_move(const GridGeometry2d& g, const Vec2& at,
                                 const std::optional<Vec2>& toward, const WindowPolicy& policy);
 
