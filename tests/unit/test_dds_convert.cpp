@@ -2,6 +2,7 @@
 // and what the struct cannot hold is rejected.
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <memory>
 
 #include "colag/common/random.hpp"
@@ -160,4 +161,15 @@ TEST(DdsConvert, RejectsWhatTheStructCannotHold) {
   sp.stops._length = limits::kMaxSupportRequests + 1;
   msg::SupportPlan sp_out;
   EXPECT_EQ(from_idl(sp, sp_out).code(), Errc::kInvalidArgument);
+
+  // A boolean byte other than 0 or 1 (the fuzzer's find: reading it as a bool is undefined).
+  colag_idl_CollisionInfo ci{};
+  const unsigned char two = 2;
+  std::memcpy(&ci.cancel, &two, 1);
+  msg::CollisionInfo ci_out;
+  EXPECT_EQ(from_idl(ci, ci_out).code(), Errc::kInvalidArgument);
+  const unsigned char one = 1;
+  std::memcpy(&ci.cancel, &one, 1);
+  ASSERT_TRUE(from_idl(ci, ci_out).is_ok());
+  EXPECT_TRUE(ci_out.cancel);
 }

@@ -8,6 +8,7 @@
 // the receiving task. Neither allocates.
 #include <array>
 #include <cstdint>
+#include <cstring>
 #include <tuple>
 #include <type_traits>
 
@@ -128,6 +129,14 @@ Status take(const C& b, F& a) {
     }
   } else if constexpr (std::is_same_v<F, TimePoint>) {
     a = time_at_nanoseconds(b);
+  } else if constexpr (std::is_same_v<F, bool>) {
+    // The wire's byte, read as a byte: a bool holding another value than 0 or 1 is undefined
+    // behaviour to read (the fuzzer found one surviving Cyclone's checks).
+    static_assert(sizeof(C) == 1);
+    unsigned char raw = 0;
+    std::memcpy(&raw, &b, 1);
+    if (raw > 1) return {Errc::kInvalidArgument, "DDS sample: a boolean neither 0 nor 1"};
+    a = raw == 1;
   } else if constexpr (std::is_enum_v<F>) {
     using U = std::underlying_type_t<F>;
     if (b > static_cast<U>(msg::EnumRange<F>::kLast))
