@@ -113,7 +113,6 @@ void MapStore::set_cell(CellIndex c, CellState s) {
   const CellState old = state_[i];
   if (old == s) return;
   ++counters_.cells_changed;
-  if (s == CellState::kUnknown) ++counters_.cells_unknown_again;
   if (old == CellState::kOccupied) stamp(c, plan_disc_, plan_count_, -1);
   if (s == CellState::kOccupied) stamp(c, plan_disc_, plan_count_, +1);
   if (old == CellState::kOccupied) stamp(c, predict_disc_, near_occupied_, -1);

@@ -77,11 +77,16 @@ constexpr double kSiteEndBand_m = 5.0;
 constexpr double kSiteStartInset_m = 2.5;
 constexpr double kPaperArenaSide_m = 27.0;
 
+}  // namespace
+
 bool has_site(const MissionConfig& cfg) {
   return cfg.site != Vec2::Zero();
 }
 
-}  // namespace
+bool site_size_ok(const Vec2& site) {
+  return site.x() >= 10.0 && site.y() >= 20.0 && site.x() <= 2.0 * limits::kMaxSiteHalf_m &&
+         site.y() <= 2.0 * limits::kMaxSiteHalf_m;
+}
 
 Vec2 field_half(const MissionConfig& cfg) {
   if (!has_site(cfg)) return Vec2::Constant(0.5 * kPaperArenaSide_m);
@@ -105,14 +110,12 @@ bool check(const MissionConfig& cfg, std::string& error) {
     return false;
   };
   if (has_site(cfg)) {
-    const double w = cfg.site.x(), h = cfg.site.y();
     if (cfg.scenario == "file")
       return fail("--site sizes the generated scenarios (a map file has its own size)");
-    if (!(w >= 10.0 && h >= 20.0 && w <= 2.0 * limits::kMaxSiteHalf_m &&
-          h <= 2.0 * limits::kMaxSiteHalf_m))
+    if (!site_size_ok(cfg.site))
       return fail("--site must be at least 10 x 20 m and at most " +
                   std::to_string(static_cast<int>(2.0 * limits::kMaxSiteHalf_m)) + " m a side");
-    if (cfg.placements.empty() && w / cfg.ugvs < 2.0)
+    if (cfg.placements.empty() && cfg.site.x() / cfg.ugvs < 2.0)
       return fail("--site is too narrow for " + std::to_string(cfg.ugvs) +
                   " UGVs side by side (2 m each)");
   }

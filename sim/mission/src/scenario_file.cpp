@@ -37,8 +37,7 @@ void read_generator_parameters(board::Reader& r, const YAML::Node& map, MissionC
   if (r.ok() && map["site"] && !(field || rooms))
     r.fail("map.site", "sizes a generated map (a PCD has its own size)");
   if (double site[2] = {}; r.ok() && r.vector(map, "map", "site", site, 2)) {
-    if (!(site[0] >= 10.0 && site[1] >= 20.0 && site[0] <= 2.0 * limits::kMaxSiteHalf_m &&
-          site[1] <= 2.0 * limits::kMaxSiteHalf_m))
+    if (!site_size_ok(Vec2(site[0], site[1])))
       r.fail("map.site", "expected [width_m, length_m], at least [10, 20]");
     else
       c.site = Vec2(site[0], site[1]);
@@ -136,7 +135,7 @@ bool load_scenario_file(const std::string& file, MissionConfig& cfg, std::string
     // A count: the generated site's layout (side by side along its north edge).
     int count = 0;
     r.get(root, "", "ugvs", count, 1, static_cast<int>(limits::kMaxUgvs));
-    if (r.ok() && c.site == Vec2::Zero())
+    if (r.ok() && !has_site(c))
       r.fail("ugvs", "a number of UGVs needs map.site (else list each {start, goal})");
     c.ugvs = count;
     if (std::string why; r.ok() && !check(c, why)) r.fail("ugvs", why);

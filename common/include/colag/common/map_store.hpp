@@ -31,8 +31,7 @@ struct MapStoreCounters {
   std::uint64_t patches_applied = 0;
   std::uint64_t patches_rejected = 0;
   std::uint64_t cells_changed = 0;
-  std::uint64_t cells_unknown_again = 0;  // known cells a patch said unknown
-  std::uint64_t plan_cells_blocked = 0;   // P-Map cells that became blocked (replanning trigger)
+  std::uint64_t plan_cells_blocked = 0;  // P-Map cells that became blocked (replanning trigger)
 };
 
 class MapStore {

@@ -104,6 +104,10 @@ bool check(const MissionConfig& cfg, std::string& error);
 Pose2 ugv_start(int i);
 Vec2 ugv_goal(int i);
 Vec3 uav_start();
+// Whether the mission has a generated site (MissionConfig::site), and whether a site's size is
+// one the generators take: at least 10 x 20 m, within limits::kMaxSiteHalf_m.
+bool has_site(const MissionConfig& cfg);
+bool site_size_ok(const Vec2& site);
 // With a site and no placements: the site's layout (above) as placements, and the UAV's start
 // behind the middle of the line.
 void lay_out_site(MissionConfig& cfg);
