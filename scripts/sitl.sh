@@ -165,9 +165,12 @@ stack_args=(--uav-stack "$uav_stack" --ugv-base "$ugv_base")
 "$build/bin/colag_world" "${mission_args[@]}" --domain "$domain" "${stack_args[@]}" \
   --print-uav-sensors >>"$run/uav.yaml" ||
   { echo "sitl: --world $world_name: see above" >&2; exit 2; }
-while read -r i x y yaw gx gy; do
+while read -r i x y yaw gx gy route; do
+  via=""  # x y pairs before the goal -> [[x, y], ...]
+  read -ra r <<<"$route"
+  for ((k = 0; k + 1 < ${#r[@]}; k += 2)); do via+="${via:+, }[${r[k]}, ${r[k + 1]}]"; done
   cat >"$run/ugv$i.yaml" <<YAML
-robot: {id: $i, goal: [$gx, $gy], start_guess: [$x, $y, $yaw], state_file: $run/ugv$i.state}
+robot: {id: $i, goal: [$gx, $gy], via: [$via], start_guess: [$x, $y, $yaw], state_file: $run/ugv$i.state}
 dds: {domain: $domain}
 realtime: {fifo_priority: 0, lock_memory: false}
 can: {interface: sim, protocol: $ugv_base}

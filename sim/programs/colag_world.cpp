@@ -466,7 +466,10 @@ int run(int argc, char** argv) {
     for (int i = 0; i < cfg.ugvs; ++i) {
       const Pose2 s0 = mission::ugv_start(cfg, i);
       const Vec2 g = mission::ugv_goal(cfg, i);
-      std::printf("%d %.6f %.6f %.9f %.6f %.6f\n", i, s0.p.x(), s0.p.y(), s0.yaw_rad, g.x(), g.y());
+      std::printf("%d %.6f %.6f %.9f %.6f %.6f", i, s0.p.x(), s0.p.y(), s0.yaw_rad, g.x(), g.y());
+      for (const Vec2& v : mission::ugv_via(cfg, i))
+        std::printf(" %.6f %.6f", v.x(), v.y());  // the route's points before the goal
+      std::printf("\n");
     }
     return 0;
   }

@@ -30,6 +30,9 @@ class View {
         take(s.truth);
     for (const Vec2& g : t.goals)
       take(g);
+    for (const auto& route : t.vias)
+      for (const Vec2& v : route)
+        take(v);
     for (const Vec2& p : t.uav_path)
       take(p);
     lo_ -= Vec2(1.0, 1.0);
@@ -130,6 +133,9 @@ bool draw_mission(const mission::MissionTrace& t, const mission::MissionOutcome&
     }
     if (!samples.empty()) cv::circle(img, px(samples.front().truth), 5, c, 2);
     if (u < t.goals.size()) cv::drawMarker(img, px(t.goals[u]), c, cv::MARKER_SQUARE, 10, 2);
+    if (u < t.vias.size())
+      for (const Vec2& v : t.vias[u])
+        cv::drawMarker(img, px(v), c, cv::MARKER_DIAMOND, 8, 1);
   }
   for (const auto& s : t.support_points) {
     cv::drawMarker(img, px(s.point), colour(static_cast<std::size_t>(s.ugv)),
@@ -165,7 +171,8 @@ bool draw_mission(const mission::MissionTrace& t, const mission::MissionOutcome&
   text(10, y0 + 70, "thick line: true UGV path   dots: its estimate   ellipses: 3-sigma every 5 s");
   text(10, y0 + 92,
        "x: support point   black line: UAV   dark squares: obstacles   red: collision");
-  text(10, y0 + 114, "light grey: never seen by the UAV   circle: start   square: goal");
+  text(10, y0 + 114,
+       "light grey: never seen by the UAV   circle: start   square: goal   diamond: route point");
   try {
     if (!cv::imwrite(path, img)) {
       error = "cannot write " + path;

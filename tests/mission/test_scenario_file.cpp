@@ -177,3 +177,55 @@ TEST(ScenarioFile, GeneratorParametersReachTheMap) {
   ASSERT_TRUE(build_world(cfg, world, error)) << error;
   EXPECT_EQ(world.boxes.size(), 12u);
 }
+
+TEST(ScenarioFile, AUgvPassesItsRoutesPointsInOrderBeforeItsGoal) {
+  // Straight from start to goal is 32 m; through the two points 46.7 m.
+  MissionConfig cfg;
+  std::string error;
+  ASSERT_TRUE(load_scenario_file(write("route.yaml", R"(map: {generator: sparse}
+world: field
+ugvs:
+  - {start: [0, 16, -90], goal: [0, -16], via: [[8, 4], [-8, -4]]}
+)"),
+                                 cfg, error))
+      << error;
+  ASSERT_EQ(cfg.placements[0].via.size(), 2u);
+  MissionTrace trace;
+  auto o = run_mission(cfg, &trace, &error);
+  ASSERT_TRUE(o) << error;
+  EXPECT_TRUE(o.value().all_reached);
+  EXPECT_EQ(o.value().collisions, 0);
+  // Where the true path came closest to each point, and when: within the pass radius (1 m, by
+  // the UGV's estimate) plus its error, the first before the second.
+  const std::vector<Vec2> via = cfg.placements[0].via;
+  std::vector<double> closest(via.size(), 1e9), when(via.size(), -1.0);
+  for (const auto& s : trace.ugv_paths[0]) {
+    for (std::size_t k = 0; k < via.size(); ++k) {
+      const double d = (s.truth - via[k]).norm();
+      if (d < closest[k]) closest[k] = d, when[k] = s.t_s;
+    }
+  }
+  EXPECT_LT(closest[0], 1.5);
+  EXPECT_LT(closest[1], 1.5);
+  EXPECT_LT(when[0], when[1]);
+  const UgvOutcome& u = o.value().ugvs[0];
+  EXPECT_GT(u.traj_length_m, 46.7 - 2 * 1.5 - u.goal_distance_m);
+}
+
+TEST(ScenarioFile, ARoutesMistakesAreRefusedNamingThePoint) {
+  const std::string dense = "map: {generator: dense}\n";
+  EXPECT_NE(
+      refusal(dense + "ugvs:\n  - {start: [0, 16, -90], goal: [0, -16], via: [[1, 2], [3]]}\n")
+          .find("ugvs[0].via[1]: expected [x, y]"),
+      std::string::npos);
+  EXPECT_NE(refusal(dense + "ugvs:\n  - {start: [0, 16, -90], goal: [0, -16], via: [[0, 40000]]}\n")
+                .find("ugvs[0].via[0]: (0.0, 40000.0) is beyond the largest site"),
+            std::string::npos);
+  std::string many = "[";
+  for (int i = 0; i < 17; ++i)
+    many += std::string(i > 0 ? ", " : "") + "[0, " + std::to_string(i) + "]";
+  EXPECT_NE(
+      refusal(dense + "ugvs:\n  - {start: [0, 16, -90], goal: [0, -16], via: " + many + "]}\n")
+          .find("ugvs[0].via: expected a list of at most 16"),
+      std::string::npos);
+}

@@ -41,7 +41,8 @@ TEST_F(BoardConfig, ReadsEveryUgvKey) {
   UgvBoardConfig c;
   std::string error;
   ASSERT_TRUE(load_ugv_config(write("ugv.yaml", R"(
-robot: {id: 3, goal: [2.0, -16.0], start_guess: [2.0, 16.0, -1.57], radius_m: 0.3,
+robot: {id: 3, goal: [2.0, -16.0], via: [[5, 8], [-1, 0.5]], start_guess: [2.0, 16.0, -1.57],
+        radius_m: 0.3,
         state_file: /var/lib/colag/ugv3.state, state_max_age_s: 60}
 dds: {domain: 7, partition: lab}
 realtime: {fifo_priority: 60, lock_memory: false}
@@ -56,6 +57,8 @@ odometry: {timeout_ms: 80, sigma_v: 0.05, sigma_omega: 0.04,
       << error;
   EXPECT_EQ(c.nav.id, 3);
   EXPECT_EQ(c.nav.goal, Vec2(2.0, -16.0));
+  ASSERT_EQ(c.nav.via.size(), 2u);
+  EXPECT_EQ(c.nav.via[1], Vec2(-1.0, 0.5));
   EXPECT_TRUE(c.nav.has_start_guess);
   EXPECT_DOUBLE_EQ(c.nav.start_guess.yaw_rad, -1.57);
   EXPECT_DOUBLE_EQ(c.nav.body_radius_m, 0.3);
@@ -141,6 +144,9 @@ TEST_F(BoardConfig, OnlyWhatTheOperatorMustSayIsRequired) {
   EXPECT_NE(ugv_error("").find("robot.id: required"), std::string::npos);
   EXPECT_NE(ugv_error("robot: {id: 2}").find("robot.goal: required"), std::string::npos);
   EXPECT_NE(ugv_error("robot: {goal: [0, -16]}").find("robot.id: required"), std::string::npos);
+  EXPECT_NE(ugv_error("robot: {id: 2, goal: [0, -16], via: [[1, .nan]]}")
+                .find("robot.via[0]: expected [x, y], two finite numbers"),
+            std::string::npos);
   UavBoardConfig uav;
   std::string uav_error;
   EXPECT_FALSE(load_uav_config(write("uav_empty.yaml", "robot: {hal: sim}"), uav, uav_error));

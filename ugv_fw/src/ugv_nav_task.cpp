@@ -259,9 +259,14 @@ void UgvNavTask::drive(TimePoint now, double dt) {
     command(now, 0.0, 0.0);
     return;
   }
+  if (vias_left_ > 0 && (ekf_.pose().p - target()).norm() <= config_.via_pass_radius_m) {
+    --vias_left_;  // passed: on to the next, without stopping
+    replan_requested_ = true;
+  }
   const ControlOutput out = controller_.step(ekf_.pose(), trajectory_, dt);
   cross_track_m_ = out.cross_track_m;
-  if (out.at_goal && (ekf_.pose().p - goal_).norm() <= config_.controller.goal_tolerance_m) {
+  if (out.at_goal && vias_left_ == 0 &&
+      (ekf_.pose().p - goal_).norm() <= config_.controller.goal_tolerance_m) {
     if (sure_of_position()) {
       arrived_ = true;
       mode_ = msg::UgvMode::kArrived;
@@ -344,7 +349,7 @@ void UgvNavTask::keep_map_window() {
     return;
   }
   const std::optional<Vec2> origin =
-      window_move(map_.geometry(), at, std::optional<Vec2>(goal_), config_.map_window);
+      window_move(map_.geometry(), at, std::optional<Vec2>(target()), config_.map_window);
   if (!origin || !map_.move_to(*origin).is_ok()) return;
   ++health_.window_moves;
   replan_requested_ = true;  // the plan was cut at the old window's edge
@@ -450,8 +455,8 @@ void UgvNavTask::replan(TimePoint now) {
   // A goal beyond the map's window: plan to where the straight line to it leaves the window (a
   // metre inside); the window moves on before the robot gets there.
   const Vec2 here = ekf_.pose().p;
-  const Vec2 target = clip_into(map_.geometry(), here, goal_, kWindowGoalMargin_m);
-  const PlanResult r = planner_.plan(map_, here, target, others_plan_, path_);
+  const Vec2 to = clip_into(map_.geometry(), here, target(), kWindowGoalMargin_m);
+  const PlanResult r = planner_.plan(map_, here, to, others_plan_, path_);
   if (r != PlanResult::kOk || !trajectory_.build(path_, controller_.last_v(), config_.limits)) {
     ++health_.plan_failures;
     no_path_ = true;
@@ -535,6 +540,7 @@ GoalResult UgvNavTask::request_goal(const Vec2& goal) {
   if (map_.state(map_.geometry().cell_of(goal)) == CellState::kOccupied)
     return GoalResult::kInObstacle;
   goal_ = goal;
+  vias_left_ = 0;
   arrived_ = false;
   aborted_ = false;
   awaiting_fix_ = false;

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "colag/sim/mission/mission_config.hpp"
 #include "colag/sim/world/ugv_body.hpp"
@@ -30,13 +33,16 @@ bool check_map(const sim::BoxWorld& world, const sim::CloudWorldReport& report,
     return (p.array() >= lo.array()).all() && (p.array() <= hi.array()).all();
   };
   for (int i = 0; i < ugvs; ++i) {
-    for (const auto& [what, p] :
-         {std::pair{"start", ugv_start(cfg, i).p}, {"goal", ugv_goal(cfg, i)}}) {
+    std::vector<std::pair<std::string, Vec2>> points{{"start", ugv_start(cfg, i).p},
+                                                     {"goal", ugv_goal(cfg, i)}};
+    for (std::size_t k = 0; k < ugv_via(cfg, i).size(); ++k)
+      points.emplace_back("via point " + std::to_string(k), ugv_via(cfg, i)[k]);
+    for (const auto& [what, p] : points) {
       if (!inside_map(p)) {
         std::snprintf(text, sizeof text,
                       "UGV %d's %s (%.1f, %.1f) lies outside the map (x %.1f..%.1f, y "
                       "%.1f..%.1f): %s; is the map shifted?",
-                      i, what, p.x(), p.y(), lo.x(), hi.x(), lo.y(), hi.y(),
+                      i, what.c_str(), p.x(), p.y(), lo.x(), hi.x(), lo.y(), hi.y(),
                       cfg.placements.empty()
                           ? "the layout puts starts at y = 16 and goals at y = -16 about the origin"
                           : "as the scenario places it");
@@ -44,10 +50,12 @@ bool check_map(const sim::BoxWorld& world, const sim::CloudWorldReport& report,
         return false;
       }
       if (world.clearance(p, body.band_low_m, body.band_high_m) < body.radius_m) {
-        std::snprintf(
-            text, sizeof text, "UGV %d's %s (%.2f, %.2f) is inside or touching an obstacle: it %s",
-            i, what, p.x(), p.y(),
-            std::string(what) == "start" ? "starts in a collision" : "cannot reach its goal");
+        std::snprintf(text, sizeof text,
+                      "UGV %d's %s (%.2f, %.2f) is inside or touching an obstacle: it %s", i,
+                      what.c_str(), p.x(), p.y(),
+                      what == "start"  ? "starts in a collision"
+                      : what == "goal" ? "cannot reach its goal"
+                                       : "cannot pass it");
         warnings.emplace_back(text);
       }
     }

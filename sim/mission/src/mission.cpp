@@ -393,6 +393,8 @@ std::unique_ptr<Mission> Mission::compose(const MissionConfig& cfg, std::string&
     ugv::UgvNavConfig nc;
     nc.id = static_cast<RobotId>(i);
     nc.goal = map_frame.to_odometry(s.goal);
+    for (const Vec2& v : ugv_via(cfg, i))
+      (void)nc.via.push_back(map_frame.to_odometry(v));  // check() bounds their number
     nc.has_start_guess = true;
     nc.start_guess = map_frame.to_odometry(ugv_start(cfg, i));
     nc.use_rpe_updates = cfg.ablation != Ablation::kNoRpe;
@@ -466,6 +468,8 @@ void Mission::fly(MissionTrace* trace, MissionWatcher* watcher) {
     trace->ugv_ellipses.resize(ugvs.size());
     for (const auto& s : ugvs)
       trace->goals.push_back(s.goal);
+    for (int i = 0; i < cfg.ugvs; ++i)
+      trace->vias.push_back(ugv_via(cfg, i));
   }
 
   // Run, watching the truth every 100 ms.

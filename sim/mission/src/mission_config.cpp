@@ -124,6 +124,9 @@ bool check(const MissionConfig& cfg, std::string& error) {
   }
   if (!cfg.placements.empty() && cfg.placements.size() != static_cast<std::size_t>(cfg.ugvs))
     return fail("a start and a goal for each of the " + std::to_string(cfg.ugvs) + " UGVs");
+  for (const UgvPlacement& p : cfg.placements)
+    if (p.via.size() > limits::kMaxRouteVias)
+      return fail("a route passes at most " + std::to_string(limits::kMaxRouteVias) + " points");
   if (!(cfg.max_time_s > 0.0)) return fail("--max-time must be > 0");
   if (!(cfg.predict_horizon_m > 0.0 && cfg.predict_horizon_m <= 20.0))
     return fail("--predict-horizon must be in (0, 20] m");
@@ -221,7 +224,7 @@ void lay_out_site(MissionConfig& cfg) {
   const double w = cfg.site.x(), y = 0.5 * cfg.site.y() - kSiteStartInset_m;
   for (int i = 0; i < cfg.ugvs; ++i) {
     const double x = -0.5 * w + (i + 0.5) * w / cfg.ugvs;
-    cfg.placements.push_back({Pose2{Vec2(x, y), -M_PI / 2}, Vec2(x, -y)});
+    cfg.placements.push_back({Pose2{Vec2(x, y), -M_PI / 2}, Vec2(x, -y), {}});
   }
   cfg.uav_start = Vec3(0.0, y - 1.0, 1.0);
 }
@@ -232,6 +235,11 @@ Pose2 ugv_start(const MissionConfig& cfg, int i) {
 }
 Vec2 ugv_goal(const MissionConfig& cfg, int i) {
   return cfg.placements.empty() ? ugv_goal(i) : cfg.placements.at(static_cast<std::size_t>(i)).goal;
+}
+
+const std::vector<Vec2>& ugv_via(const MissionConfig& cfg, int i) {
+  static const std::vector<Vec2> kNone;
+  return cfg.placements.empty() ? kNone : cfg.placements.at(static_cast<std::size_t>(i)).via;
 }
 
 }  // namespace colag::mission

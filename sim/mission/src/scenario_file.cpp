@@ -148,14 +148,19 @@ bool load_scenario_file(const std::string& file, MissionConfig& cfg, std::string
   for (std::size_t i = 0; r.ok() && ugvs.IsSequence() && i < ugvs.size(); ++i) {
     const std::string path = "ugvs[" + std::to_string(i) + "]";
     const YAML::Node ugv = ugvs[i];
-    r.only(ugv, path, {"start", "goal"});
+    r.only(ugv, path, {"start", "goal", "via"});
     r.require(ugv, path, "start");
     r.require(ugv, path, "goal");
     double s[3] = {}, g[2] = {};
     if (!r.vector(ugv, path, "start", s, 3) || !r.vector(ugv, path, "goal", g, 2)) break;
-    UgvPlacement p{{Vec2(s[0], s[1]), s[2] * M_PI / 180.0}, Vec2(g[0], g[1])};
+    UgvPlacement p{{Vec2(s[0], s[1]), s[2] * M_PI / 180.0}, Vec2(g[0], g[1]), {}};
+    r.points(ugv, path, "via", limits::kMaxRouteVias,
+             [&](double x, double y) { p.via.emplace_back(x, y); });
     if (!inside_maps(p.start.p)) r.fail(path + ".start", outside_text(p.start.p));
     if (!inside_maps(p.goal)) r.fail(path + ".goal", outside_text(p.goal));
+    for (std::size_t k = 0; k < p.via.size(); ++k)
+      if (!inside_maps(p.via[k]))
+        r.fail(path + ".via[" + std::to_string(k) + "]", outside_text(p.via[k]));
     for (std::size_t k = 0; r.ok() && k < c.placements.size(); ++k) {
       const double d = (c.placements[k].start.p - p.start.p).norm();
       if (d < kMinStartSeparation_m) {

@@ -65,12 +65,15 @@ void read_agilex(board::Reader& r, const YAML::Node& n, hal::can::AgilexConfig& 
 void read_ugv_sections(board::Reader& r, const YAML::Node& doc, UgvBoardConfig& c) {
   const YAML::Node robot = child(doc, "robot");
   r.only(robot, "robot",
-         {"id", "goal", "start_guess", "radius_m", "state_file", "state_max_age_s"});
+         {"id", "goal", "via", "start_guess", "radius_m", "state_file", "state_max_age_s"});
   int id = 1;
   r.get(robot, "robot", "id", id, 0, static_cast<int>(limits::kMaxUgvs) - 1);
   c.nav.id = static_cast<RobotId>(id);
   double goal[2];
   if (r.vector(robot, "robot", "goal", goal, 2)) c.nav.goal = Vec2(goal[0], goal[1]);
+  c.nav.via.clear();
+  r.points(robot, "robot", "via", limits::kMaxRouteVias,
+           [&](double x, double y) { (void)c.nav.via.push_back(Vec2(x, y)); });
   double start[3];
   if (r.vector(robot, "robot", "start_guess", start, 3)) {
     c.nav.has_start_guess = true;

@@ -124,6 +124,40 @@ class Reader {
     }
     return ok();
   }
+  // [[x, y], ...]: up to `max` points, each handed to add(x, y) in order once all are read.
+  // False when absent or wrong (then nothing is added).
+  template <class Add>
+  bool points(const YAML::Node& node, const std::string& path, const char* key, std::size_t max,
+              Add&& add) {
+    const YAML::Node v = child(node, key);
+    if (!v) return false;
+    const std::string where = join(path, key);
+    if (!v.IsSequence() || v.size() > max) {
+      fail(where, "expected a list of at most " + std::to_string(max) + " [x, y] points");
+      return false;
+    }
+    const auto read = [&](std::size_t i, double& x, double& y) {
+      const YAML::Node p = v[i];
+      try {
+        if (p.IsSequence() && p.size() == 2) {
+          x = p[0].as<double>();
+          y = p[1].as<double>();
+          if (std::isfinite(x) && std::isfinite(y)) return true;
+        }
+      } catch (const YAML::Exception&) {
+      }
+      fail(where + "[" + std::to_string(i) + "]", "expected [x, y], two finite numbers");
+      return false;
+    };
+    double x = 0.0, y = 0.0;
+    for (std::size_t i = 0; i < v.size(); ++i)
+      if (!read(i, x, y)) return false;
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      read(i, x, y);
+      add(x, y);
+    }
+    return ok();
+  }
 
  private:
   static std::string join(const std::string& path, const std::string& key) {

@@ -39,6 +39,7 @@ inline constexpr std::size_t kMaxPatchBytes = kMaxPatchCells / 4;  // 2 bits per
 // --- Planning ----------------------------------------------------------------------------------
 inline constexpr std::size_t kMaxPathPoints = 2048;  // raw grid path
 inline constexpr std::size_t kMaxWaypoints = 256;    // after smoothing
+inline constexpr std::size_t kMaxRouteVias = 16;     // a mission's points passed before its goal
 inline constexpr std::size_t kMaxTrajectorySamples = 1024;
 inline constexpr std::size_t kMaxPredictionSteps = 256;  // collision-prediction ellipses
 

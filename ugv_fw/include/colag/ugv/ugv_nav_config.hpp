@@ -4,6 +4,7 @@
 #include "colag/common/map_store.hpp"
 #include "colag/common/map_window.hpp"
 #include "colag/common/planner.hpp"
+#include "colag/common/static_vector.hpp"
 #include "colag/common/time.hpp"
 #include "colag/common/ugv_ekf.hpp"
 #include "colag/msg/robot_id.hpp"
@@ -20,6 +21,11 @@ namespace colag::ugv {
 struct UgvNavConfig {
   RobotId id = 0;
   Vec2 goal = Vec2::Zero();
+  // Passed through in this order before the goal (world frame): each counts as passed once the
+  // robot believes itself within via_pass_radius_m of it; it does not stop there. A goal sent
+  // at run time (request_goal) replaces the rest of the route.
+  StaticVector<Vec2, limits::kMaxRouteVias> via;
+  double via_pass_radius_m = 1.0;
   UgvSchedule schedule;  // the loops' rates, budgets and offsets
   // Where the robot is believed to start (mission plan). Used only to call the UAV before the
   // first relative pose initialises the estimator; never fused.

@@ -150,6 +150,7 @@ class UgvNavTask {
   // A new goal also ends an abort (a pause holds until kResume).
   GoalResult request_goal(const Vec2& goal);
   const Vec2& goal() const { return goal_; }
+  std::size_t vias_left() const { return vias_left_; }  // route points not yet passed
   // Pause, resume, abort, return to start (`command`: a UgvCommand's value, checked here). While
   // paused or aborted it stands (kPaused, kAborted: its waiting counts them as `operator`) and
   // asks the UAV for nothing. Call between steps, on the task's thread.
@@ -224,7 +225,12 @@ class UgvNavTask {
   CollisionPredictor predictor_;
   Prediction prediction_;
   msg::UgvStatus last_status_;
-  Vec2 goal_ = config_.goal;  // where it drives (request_goal changes it)
+  Vec2 goal_ = config_.goal;                    // where it drives (request_goal changes it)
+  std::size_t vias_left_ = config_.via.size();  // of config_.via, the last ones still ahead
+  // Where it drives now: the next point of its route, or its goal.
+  const Vec2& target() const {
+    return vias_left_ > 0 ? config_.via[config_.via.size() - vias_left_] : goal_;
+  }
   SupportProtocol support_;
   BlockedWatch blocked_;
   std::array<OtherUgv, limits::kMaxUgvs> others_{};

@@ -61,6 +61,7 @@ struct ClockConfig {
 struct UgvPlacement {
   Pose2 start;
   Vec2 goal = Vec2::Zero();
+  std::vector<Vec2> via;  // passed in order before the goal (at most limits::kMaxRouteVias)
 };
 
 struct MissionConfig {
@@ -116,6 +117,7 @@ Vec2 field_half(const MissionConfig& cfg);
 // This mission's: its placements, or the paper's layout.
 Pose2 ugv_start(const MissionConfig& cfg, int i);
 Vec2 ugv_goal(const MissionConfig& cfg, int i);
+const std::vector<Vec2>& ugv_via(const MissionConfig& cfg, int i);  // before the goal
 // The generated maps (colag_sim --scenario, a scenario file's map.generator), and which of them
 // are fields of boxes or pillars (`boxes` sets how many).
 inline const std::vector<std::string> kGeneratedScenarios{"sparse", "dense", "pillars", "rooms"};

@@ -127,6 +127,7 @@ struct MissionTrace {
   std::vector<std::vector<Sample>> ugv_paths;
   std::vector<std::vector<EllipseMark>> ugv_ellipses;
   std::vector<Vec2> goals;
+  std::vector<std::vector<Vec2>> vias;  // each UGV's route points before its goal
   std::vector<Vec2> uav_path;
   std::vector<SupportMark> support_points;
   struct Stop {
