@@ -16,10 +16,10 @@
 
 #include "colag/sim/host_program.hpp"
 #include "colag/sim/mission/mission.hpp"
-#include "colag/sim/mission/scenario_file.hpp"
 #include "colag/sim/mission/world_file.hpp"
 #include "colag/sim/mission_png.hpp"
 #include "colag/sim/recording/mcap_recorder.hpp"
+#include "colag/sim/scenario_options.hpp"
 #include "colag/sim/world/pcd_writer.hpp"
 
 using namespace colag;
@@ -199,26 +199,12 @@ int run(int argc, char** argv) {
     cfg.map_file = map_file;
   }
   mission::parse_ablation(ablation, cfg.ablation);
-  const bool given_world = app.get_option("--world")->count() > 0;
-  if (!scenario_file.empty()) {
-    // The file's values, then what the command line gave explicitly.
-    const mission::MissionConfig cli = cfg;
-    if (std::string error; !mission::load_scenario_file(scenario_file, cfg, error)) {
-      std::fprintf(stderr, "colag_sim: --scenario-file: %s\n", error.c_str());
-      return 2;
-    }
-    if (app.get_option("--seed")->count() > 0) cfg.seed = cli.seed;
-    if (app.get_option("--max-time")->count() > 0) cfg.max_time_s = cli.max_time_s;
-    if (app.get_option("--latency-ms")->count() > 0) cfg.faults.latency_ms = cli.faults.latency_ms;
-    if (app.get_option("--jitter-ms")->count() > 0) cfg.faults.jitter_ms = cli.faults.jitter_ms;
+  if (const int code =
+          sim::apply_scenario_options(app, "colag_sim", scenario_file, world_name, cfg))
+    return code;
+  if (!scenario_file.empty()) {  // these two are kept as percentages until below
     if (app.get_option("--loss")->count() == 0) loss_pct = cfg.faults.loss * 100.0;
     if (app.get_option("--odom-bias")->count() == 0) odom_bias_pct = cfg.faults.odom_bias * 100.0;
-  }
-  if (scenario_file.empty() || given_world) {
-    if (std::string error; !mission::world_from_name(world_name, cfg.world, error)) {
-      std::fprintf(stderr, "colag_sim: --world: %s\n", error.c_str());
-      return 2;
-    }
   }
   if (fov_opt->count() + range_opt->count() + sigma_opt->count() + true_opt->count() > 0)
     cfg.world.name += "+camera";  // the JSON and the table say the world is not the file's

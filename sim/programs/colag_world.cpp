@@ -30,10 +30,10 @@
 #include "colag/sim/bridge/world_bridge.hpp"
 #include "colag/sim/host_program.hpp"
 #include "colag/sim/mission/mission.hpp"
-#include "colag/sim/mission/scenario_file.hpp"
 #include "colag/sim/mission/truth_metrics.hpp"
 #include "colag/sim/mission/world_file.hpp"
 #include "colag/sim/mission/world_setup.hpp"
+#include "colag/sim/scenario_options.hpp"
 #include "colag/sim/world/sim_world.hpp"
 #include "colag/ugv/waiting.hpp"
 
@@ -395,13 +395,13 @@ int run(int argc, char** argv) {
       ->check(CLI::ExistingFile);
   bool print_placements = false;
   app.add_flag("--print-placements", print_placements,
-               "print each UGV's start and goal (one line each: id x y yaw_rad goal_x goal_y), "
-               "exit");
-  auto* seed = app.add_option("--seed", cfg.seed, "map seed")->check(sim::kSeed);
+               "print each UGV's start and goal (one line each: id x y yaw_rad goal_x goal_y, then "
+               "any route points x y), exit");
+  app.add_option("--seed", cfg.seed, "map seed")->check(sim::kSeed);
   app.add_option("--domain", domain, "the robots' DDS domain (the sim link uses domain + 1)")
       ->check(CLI::Range(0, 231));
-  auto* max_time = app.add_option("--max-time", cfg.max_time_s, "mission time limit, s")
-                       ->check(sim::positive_up_to(1e6));
+  app.add_option("--max-time", cfg.max_time_s, "mission time limit, s")
+      ->check(sim::positive_up_to(1e6));
   app.add_option("--start-timeout", start_timeout_s, "how long to wait for the robots, s")
       ->check(sim::positive_up_to(1e6));
   app.add_option("--max-silence", max_silence_s,
@@ -413,10 +413,9 @@ int run(int argc, char** argv) {
   app.add_option("--time-scale", time_scale,
                  "simulated seconds per second (the robots need the same --time-scale)")
       ->check(CLI::Range(0.1, 20.0));
-  auto* world_opt =
-      app.add_option("--world", world_name,
-                     "ideal (the paper's), field (what real sensors do), or a YAML world file "
-                     "(config/worlds/field.yaml); each robot's clock is the host's in SITL");
+  app.add_option("--world", world_name,
+                 "ideal (the paper's), field (what real sensors do), or a YAML world file "
+                 "(config/worlds/field.yaml); each robot's clock is the host's in SITL");
   sim::add_ugv_base_option(app, cfg.ugv_base);
   app.add_option("--uav-stack", uav_stack,
                  "sim: the UAV's devices over the sim link (robot.hal sim); px4: PX4's agent, "
@@ -441,22 +440,9 @@ int run(int argc, char** argv) {
       "input error; 3 a robot never appeared or went silent.");
   if (const auto code = sim::parse_command_line(app, argc, argv)) return *code;
   if (!cfg.map_file.empty()) cfg.scenario = "file";
-  const bool given_world = world_opt->count() > 0;
-  if (!scenario_file.empty()) {
-    // The file's values, then what the command line gave as well.
-    const mission::MissionConfig given = cfg;
-    if (std::string error; !mission::load_scenario_file(scenario_file, cfg, error)) {
-      std::fprintf(stderr, "colag_world: --scenario-file: %s\n", error.c_str());
-      return 2;
-    }
-    if (seed->count() > 0) cfg.seed = given.seed;
-    if (max_time->count() > 0) cfg.max_time_s = given.max_time_s;
-  }
-  if (std::string error; (scenario_file.empty() || given_world) &&
-                         !mission::world_from_name(world_name, cfg.world, error)) {
-    std::fprintf(stderr, "colag_world: --world: %s\n", error.c_str());
-    return 2;
-  }
+  if (const int code =
+          sim::apply_scenario_options(app, "colag_world", scenario_file, world_name, cfg))
+    return code;
   mission::lay_out_site(cfg);
   if (std::string error; !mission::check(cfg, error)) {
     std::fprintf(stderr, "colag_world: %s\n", error.c_str());

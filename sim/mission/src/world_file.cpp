@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
+#include <filesystem>
 
 #include "colag/board/yaml_reader.hpp"
 
@@ -85,6 +86,10 @@ bool world_from_name(const std::string& name, sim::WorldProfile& out, std::strin
   if (name == "field") {
     out = sim::field_world();
     return true;
+  }
+  if (!std::filesystem::exists(name)) {
+    error = "'" + name + "' is neither ideal, field nor a world-profile YAML file";
+    return false;
   }
   return load_world_file(name, out, error);
 }
