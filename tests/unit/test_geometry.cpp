@@ -1,5 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+
+#include "colag/common/fast_atan2.hpp"
 #include "colag/common/geometry.hpp"
 
 using namespace colag;
@@ -48,4 +52,25 @@ TEST(Geometry, Pose3ComposeInverseAndYaw) {
   EXPECT_NEAR(yaw_of(tilted), 1.2, 1e-12);
   const Pose2 flat = to_pose2(ugv);
   EXPECT_NEAR(flat.yaw_rad, 0.5, 1e-12);
+}
+
+TEST(FastAtan2, WithinTwoHundredthsOfAMicroradianOfStdAtan2AllRound) {
+  double worst = 0.0;
+  for (int k = 0; k < 100000; ++k) {
+    const double t = -M_PI + 2.0 * M_PI * k / 100000.0;
+    for (const double r : {1e-3, 1.0, 200.0}) {
+      const double x = r * std::cos(t), y = r * std::sin(t);
+      worst = std::max(worst, std::abs(fast_atan2(y, x) - std::atan2(y, x)));
+    }
+  }
+  EXPECT_LT(worst, 2e-8);
+  // The axes and the special values as std::atan2 has them (a LiDAR column is binned from it).
+  EXPECT_DOUBLE_EQ(fast_atan2(0.0, 1.0), 0.0);
+  EXPECT_DOUBLE_EQ(fast_atan2(1.0, 0.0), M_PI_2);
+  EXPECT_DOUBLE_EQ(fast_atan2(-1.0, 0.0), -M_PI_2);
+  EXPECT_DOUBLE_EQ(fast_atan2(0.0, -1.0), M_PI);
+  EXPECT_NEAR(fast_atan2(1.0, 1.0), M_PI_4, 2e-8);
+  EXPECT_EQ(fast_atan2(0.0, 0.0), 0.0);
+  EXPECT_TRUE(std::isnan(fast_atan2(std::nan(""), 1.0)));
+  EXPECT_DOUBLE_EQ(fast_atan2(INFINITY, 1.0), M_PI_2);
 }

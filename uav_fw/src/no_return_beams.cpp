@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "colag/common/fast_atan2.hpp"
 #include "colag/common/limits.hpp"
 
 namespace colag::uav {
@@ -60,8 +61,10 @@ hal::LidarScanView NoReturnBeams::complete(const hal::LidarScanView& scan) {
   const double to_beam = 1.0 / pattern_.elevation_step_deg;
   const double to_column = pattern_.columns / (2.0 * M_PI);
   for (const hal::LidarPoint& p : scan.points) {
-    const double horizontal = std::hypot(double{p.x_m}, double{p.y_m});
-    const double el_deg = std::atan2(double{p.z_m}, horizontal) * 180.0 / M_PI;
+    // Floats squared in double cannot overflow: no need for hypot's care (nor its cost).
+    const double x = p.x_m, y = p.y_m;
+    const double horizontal = std::sqrt(x * x + y * y);
+    const double el_deg = fast_atan2(double{p.z_m}, horizontal) * (180.0 / M_PI);
     const double b = (el_deg - pattern_.lowest_elevation_deg) * to_beam;
     const double bi = std::round(b);
     // Half a step off every beam (or not finite): not a beam of this pattern.
@@ -69,7 +72,7 @@ hal::LidarScanView NoReturnBeams::complete(const hal::LidarScanView& scan) {
       ++counters_.returns_off_pattern;
       continue;
     }
-    double az = std::atan2(double{p.y_m}, double{p.x_m});
+    double az = fast_atan2(y, x);
     if (az < 0.0) az += 2.0 * M_PI;
     const auto c = static_cast<int>(std::lround(az * to_column)) % pattern_.columns;
     returned_[static_cast<std::size_t>(c) * static_cast<std::size_t>(pattern_.beams) +

@@ -32,8 +32,10 @@ bool TeamFilter::add(std::size_t id, const Vec2& where, double uncertainty_m, Du
   located_.set(id);
   const double travel_s = std::max(to_seconds(age + config_.max_latency), 0.0);
   const Vec2 to = where + speed_mps * travel_s * Vec2(std::cos(yaw_rad), std::sin(yaw_rad));
-  (void)capsules_.push_back({where, to, config_.body_radius_m + config_.margin_m + uncertainty_m,
-                             !was_located_.test(id)});
+  const double r = config_.body_radius_m + config_.margin_m + uncertainty_m;
+  const Vec2 pad(r, r);
+  (void)capsules_.push_back(
+      {where, to, r, !was_located_.test(id), where.cwiseMin(to) - pad, where.cwiseMax(to) + pad});
   return true;
 }
 
@@ -52,8 +54,13 @@ hal::LidarScanView TeamFilter::apply(const hal::LidarScanView& scan, const Pose3
     const Vec3 w = R * Vec3(p.x_m, p.y_m, p.z_m) + sensor.p;
     bool team = false;
     if (w.z() >= config_.ground_top_m && w.z() <= config_.body_top_m) {
-      for (const Capsule& c : capsules_)
-        team = team || c.contains(w.head<2>());
+      for (const Capsule& c : capsules_) {
+        if (w.x() < c.lo.x() || w.x() > c.hi.x() || w.y() < c.lo.y() || w.y() > c.hi.y()) continue;
+        if (c.contains(w.head<2>())) {
+          team = true;
+          break;
+        }
+      }
     }
     if (team) {
       ++counters_.dropped;

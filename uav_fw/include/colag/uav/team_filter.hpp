@@ -62,6 +62,7 @@ class TeamFilter {
     Vec2 a, b;
     double radius;
     bool anew;
+    Vec2 lo, hi;  // its bounding box: most returns are far from every UGV, and cheaply so
     bool contains(const Vec2& p) const;
   };
   TeamFilterConfig config_;
