@@ -150,7 +150,6 @@ class UgvNavTask {
   // A new goal also ends an abort (a pause holds until kResume).
   GoalResult request_goal(const Vec2& goal);
   const Vec2& goal() const { return goal_; }
-  std::size_t vias_left() const { return vias_left_; }  // route points not yet passed
   // Pause, resume, abort, return to start (`command`: a UgvCommand's value, checked here). While
   // paused or aborted it stands (kPaused, kAborted: its waiting counts them as `operator`) and
   // asks the UAV for nothing. Call between steps, on the task's thread.
