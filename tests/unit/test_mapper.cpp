@@ -212,6 +212,39 @@ TEST(Mapper, RepeatedMissesClearAnObstacleThatMovedAndHitsComeBack) {
   EXPECT_EQ(map->state(Vec3(2.05, 0.05, 1.05)), VoxelState::kOccupied);
 }
 
+// An inferred miss (a beam of the pattern without a return) that crosses a voxel occupied now
+// lost its return there, most likely: it lowers the voxels between the sensor and that voxel,
+// none behind it (the inside of a wall, its shadow), whichever way the scan is cut.
+TEST(Mapper, AnInferredMissEndsAtTheFirstOccupiedVoxelOnItsWay) {
+  for (const MapperSplit split : {MapperSplit::kRows, MapperSplit::kColumns}) {
+    MapperConfig config;
+    config.split = split;
+    auto map = std::make_unique<Mapper>(config);
+    const Pose3 sensor{Vec3(0.05, 0.05, 1.05), Quat::Identity()};
+    // A wall 2 m ahead along x, hit once: occupied. Then beams through it and beyond, inferred.
+    const hal::LidarPoint wall{2.0F, 0.0F, 0.0F};
+    map->insert_scan(sensor, {TimePoint{}, 8.0F, {&wall, 1}, {}});
+    ASSERT_EQ(map->state(Vec3(2.05, 0.05, 1.05)), VoxelState::kOccupied);
+    std::vector<hal::LidarPoint> through;
+    for (int k = -3; k <= 3; ++k)
+      through.push_back({6.0F, 0.01F * static_cast<float>(k), 0.0F});
+    hal::LidarScanView inferred{TimePoint{}, 8.0F, {}, through};
+    inferred.misses_inferred = true;
+    for (int k = 0; k < 30; ++k)
+      map->insert_scan(sensor, inferred);
+    EXPECT_EQ(map->state(Vec3(2.05, 0.05, 1.05)), VoxelState::kOccupied);
+    EXPECT_EQ(map->state(Vec3(1.25, 0.05, 1.05)), VoxelState::kFree);  // in front: seen free
+    for (double x = 2.15; x < 6.0; x += 0.1)  // behind: as it was, never observed
+      EXPECT_EQ(map->state(Vec3(x, 0.05, 1.05)), VoxelState::kUnknown) << x;
+    EXPECT_GT(map->counters().misses_undone, 30u);
+    // The same beams as real misses (a listed no-return, not inferred) do clear it.
+    hal::LidarScanView listed{TimePoint{}, 8.0F, {}, through};
+    map->insert_scan(sensor, listed);
+    map->insert_scan(sensor, listed);
+    EXPECT_EQ(map->state(Vec3(3.05, 0.05, 1.05)), VoxelState::kFree);
+  }
+}
+
 TEST(Mapper, IgnoresScansFromOutsideTheGridAndNonFinitePoints) {
   auto map = std::make_unique<Mapper>();
   const hal::LidarPoint bad{std::numeric_limits<float>::quiet_NaN(), 0.0F, 0.0F};

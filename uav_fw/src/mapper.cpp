@@ -33,6 +33,9 @@ bool test_bit(const std::uint64_t* words, std::size_t i) {
 void set_bit(std::uint64_t* words, std::size_t i) {
   words[i >> 6] |= std::uint64_t{1} << (i & 63);
 }
+void clear_bit(std::uint64_t* words, std::size_t i) {
+  words[i >> 6] &= ~(std::uint64_t{1} << (i & 63));
+}
 }  // namespace
 
 Mapper::Mapper(const MapperConfig& config, ForkJoin* fork_join)
@@ -89,6 +92,14 @@ inline bool Mapper::add_once(std::int8_t* logodds, std::uint64_t* touched, std::
 // `early_stop_crossed` consecutive voxels an earlier ray of this scan crossed: from there on the
 // earlier rays have done the work. Stopping early only ever skips miss updates, so it never
 // creates free space (a test compares it with full tracing).
+//
+// An inferred miss (weak) ends at the voxel nearest the sensor that is occupied now: a beam that
+// crossed an obstacle seen there most likely lost its return on it, and says nothing of what lies
+// behind (the inside of a wall, its shadow). Traced backwards, the ray meets what lies behind
+// first: its updates are logged and undone when an occupied voxel turns up. (The log lives for
+// one call: a ray resumed in the sensor's slice cannot undo its half's updates. An occupied voxel
+// there would be in the sensor's own row or column, within a voxel of it: the flight layer keeps
+// obstacles a metre away.)
 bool Mapper::trace(const Vec3& a, const Vec3& b, VoxelLayer stop, bool first_is_end, bool hit,
                    bool weak, Runs& runs, Part& part, Bits& bits) {
   // Everything the loop touches is a local: the map's int8 writes may alias any memory, so
@@ -104,9 +115,23 @@ bool Mapper::trace(const Vec3& a, const Vec3& b, VoxelLayer stop, bool first_is_
   const int stop_crossed = config_.early_stop_crossed;
   int unchanged = runs.unchanged, crossed = runs.crossed;
   std::uint64_t visits = 0, updates = 0;
+  Part::Undo* const undo = part.undo.data();
+  std::size_t logged = 0;
   const auto apply = [&](std::size_t i, int delta) {
+    if (weak) {
+      if (logged == part.undo.size()) return false;  // see Part::undo
+      undo[logged++] = {static_cast<std::uint32_t>(i), logodds[i]};
+    }
     ++updates;
     return add_once(logodds, touched, i, delta, lo, hi);
+  };
+  const auto undo_beyond = [&] {
+    for (std::size_t k = 0; k < logged; ++k) {
+      logodds[undo[k].voxel] = undo[k].logodds;
+      clear_bit(touched, undo[k].voxel);
+    }
+    part.misses_undone += logged;
+    logged = 0;
   };
   const bool stopped = any_voxel_index_on_segment(geometry(), a, b, stop, [&](std::size_t i) {
     ++visits;
@@ -116,12 +141,14 @@ bool Mapper::trace(const Vec3& a, const Vec3& b, VoxelLayer stop, bool first_is_
       if (!seen && (hit || logodds[i] < keep_from)) apply(i, hit ? hit_ : miss);  // hits: applied
       return false;
     }
+    const bool kept = logodds[i] >= keep_from;  // only ever for an inferred miss
+    if (kept) undo_beyond();
     if (seen) {
       ++crossed;
       return ++unchanged >= stop_unchanged || crossed >= stop_crossed;
     }
     crossed = 0;
-    if (logodds[i] >= keep_from) return ++unchanged >= stop_unchanged;
+    if (kept) return ++unchanged >= stop_unchanged;
     if (apply(i, miss)) {
       unchanged = 0;
       return false;
@@ -342,7 +369,7 @@ void Mapper::insert_scan(const Pose3& sensor, const hal::LidarScanView& scan) {
   (void)rays_.resize(n);
   for (Part& part : parts_) {
     part.resume.clear();
-    part.rays_merged = part.voxel_updates = part.voxel_visits = 0;
+    part.rays_merged = part.voxel_updates = part.voxel_visits = part.misses_undone = 0;
   }
   for (int c = 0; c < kChunks; ++c) {
     chunks_[static_cast<std::size_t>(c)].first = static_cast<std::uint32_t>(n * c / kChunks);
@@ -425,6 +452,7 @@ void Mapper::insert_scan(const Pose3& sensor, const hal::LidarScanView& scan) {
     counters_.rays_merged += part.rays_merged;
     counters_.voxel_updates += part.voxel_updates;
     counters_.voxel_visits += part.voxel_visits;
+    counters_.misses_undone += part.misses_undone;
   }
 }
 

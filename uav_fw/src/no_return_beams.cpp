@@ -55,7 +55,8 @@ NoReturnBeams::NoReturnBeams(const LidarBeamPattern& pattern) : pattern_(pattern
   misses_.reserve(n);
 }
 
-hal::LidarScanView NoReturnBeams::complete(const hal::LidarScanView& scan) {
+hal::LidarScanView NoReturnBeams::complete(const hal::LidarScanView& scan, const Pose3& sensor,
+                                           double ground_z_m) {
   if (pattern_.beams == 0 || !scan.misses.empty() || !(scan.max_range_m > 0.0F)) return scan;
   std::fill(returned_.begin(), returned_.end(), std::uint8_t{0});
   const double to_beam = 1.0 / pattern_.elevation_step_deg;
@@ -80,11 +81,21 @@ hal::LidarScanView NoReturnBeams::complete(const hal::LidarScanView& scan) {
   }
   misses_.clear();
   const float r = scan.max_range_m;
+  // A beam's height at its maximum range: the sensor's, plus the range times its direction's z
+  // in the map frame (the rotation's last row).
+  const Vec3 up = sensor.q.toRotationMatrix().row(2).transpose() * double{r};
+  const double lowest_end = ground_z_m - sensor.p.z();
+  std::uint64_t lost = 0;
   for (std::size_t k = 0; k < returned_.size(); ++k) {
     if (returned_[k] != 0) continue;
     const hal::LidarPoint& d = directions_[k];
+    if (up.x() * d.x_m + up.y() * d.y_m + up.z() * d.z_m < lowest_end) {
+      ++lost;
+      continue;
+    }
     misses_.push_back({d.x_m * r, d.y_m * r, d.z_m * r});
   }
+  counters_.returns_lost += lost;
   ++counters_.scans_completed;
   counters_.misses_inferred += misses_.size();
   hal::LidarScanView out = scan;

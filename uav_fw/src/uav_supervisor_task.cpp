@@ -173,7 +173,9 @@ void UavSupervisorTask::mapping_step(TimePoint now) {
                              .pose.compose(config_.lidar_mount);
     filter_team(now);
     // Misses from the pattern first: a UGV's return the team filter drops is not free space.
-    mapper_.insert_scan(sensor, team_filter_.apply(no_returns_.complete(scan), sensor, mapper_));
+    const double ground = mapper_.geometry().origin_z();
+    mapper_.insert_scan(
+        sensor, team_filter_.apply(no_returns_.complete(scan, sensor, ground), sensor, mapper_));
   }
   if (have_state_ && elapsed(now, flight_layer_at_, config_.flight_layer_period)) {
     flight_layer_at_ = now;

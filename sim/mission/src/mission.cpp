@@ -102,7 +102,9 @@ class SelfPerceptionTask final : public platform::Task {
                         other.pose().yaw_rad, other.speed_mps());
       }
       const Pose3 sensor{Vec3(g.p.x(), g.p.y(), 0.4), quat_from_yaw(g.yaw_rad)};
-      mapper_->insert_scan(sensor, team_.apply(no_returns_.complete(scan), sensor, *mapper_));
+      const double ground = mapper_->geometry().origin_z();
+      mapper_->insert_scan(
+          sensor, team_.apply(no_returns_.complete(scan, sensor, ground), sensor, *mapper_));
     }
     msg::RelativePose rp;  // the true pose, relative to the reference frame
     rp.stamp = now;

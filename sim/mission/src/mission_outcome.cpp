@@ -41,7 +41,11 @@ const char* doing(msg::UgvMode m) {
 std::string end_of(const UgvOutcome& o) {
   char text[256];
   if (o.collided) {
-    std::snprintf(text, sizeof text, "collided; %.2f m from its goal", o.goal_distance_m);
+    char with[32] = "an obstacle";
+    if (o.collided_with >= 0) std::snprintf(with, sizeof with, "UGV %d", o.collided_with);
+    std::snprintf(text, sizeof text,
+                  "collided with %s at %.1f s at (%.2f, %.2f); %.2f m from its goal", with,
+                  o.collided_at_s, o.collided_where.x(), o.collided_where.y(), o.goal_distance_m);
   } else if (o.reached) {
     std::snprintf(text, sizeof text, "reached its goal");
   } else if (o.final_mode == msg::UgvMode::kArrived) {
@@ -80,8 +84,13 @@ void summarise(const sim::SimWorld& world, MissionOutcome& out) {
     o.traj_length_m = world.ugv(o.id).travelled_m();
     o.min_clearance_m = world.min_clearance_m(o.id);
     o.goal_distance_m = (world.ugv(o.id).pose().p - ugv_goal(out.config, o.id)).norm();
-    for (const auto& c : world.collisions())
-      o.collided = o.collided || c.ugv == o.id || c.other_ugv == o.id;
+    for (const auto& c : world.collisions()) {
+      if (o.collided || (c.ugv != o.id && c.other_ugv != o.id)) continue;
+      o.collided = true;
+      o.collided_at_s = to_seconds(c.at);
+      o.collided_where = c.where;
+      o.collided_with = c.ugv == o.id ? c.other_ugv : c.ugv;
+    }
     if (o.reached) {
       reach_sum += o.reach_time_s;
       ++reached;
@@ -159,6 +168,13 @@ std::string to_json(const MissionOutcome& o, bool include_wall_time) {
     if (u.blocked_s > 0.0) ju["blocked_reason"] = to_string(u.blocked_reason);
     ju["traj_length_m"] = u.traj_length_m;
     ju["min_clearance_m"] = u.min_clearance_m;
+    if (u.collided) {
+      ju["collision"] = {{"t_s", u.collided_at_s},
+                         {"x_m", u.collided_where.x()},
+                         {"y_m", u.collided_where.y()},
+                         {"with", u.collided_with >= 0 ? nlohmann::ordered_json(u.collided_with)
+                                                       : nlohmann::ordered_json("obstacle")}};
+    }
     ju["support_requests"] = u.support_requests;
     ju["bytes_in_per_s"] = u.bytes_in_per_s;
     ju["goal_distance_m"] = u.goal_distance_m;

@@ -73,6 +73,7 @@ struct MapperCounters {
   std::uint64_t rays_resumed = 0;     // back-traces finished in the sensor's row or column
   std::uint64_t scans_by_column = 0;  // scans cut into west and east halves
   std::uint64_t voxels_forgotten = 0;
+  std::uint64_t misses_undone = 0;  // inferred-miss updates undone: beyond an occupied voxel
 };
 
 class Mapper {
@@ -151,7 +152,15 @@ class Mapper {
       std::uint8_t unchanged = 0, crossed = 0;  // the early-stop runs where the ray stopped
     };
     StaticVector<Resume, limits::kMaxLidarPoints> resume;  // rays that reached the slice
-    std::uint64_t rays_merged = 0, voxel_updates = 0, voxel_visits = 0;
+    std::uint64_t rays_merged = 0, voxel_updates = 0, voxel_visits = 0, misses_undone = 0;
+    // The updates of the inferred miss being traced, until it reaches the sensor or a voxel
+    // occupied now (see Mapper::trace). A ray crosses fewer voxels than this (3 x 15 m / 0.1 m);
+    // one that would cross more stops lowering voxels at the limit.
+    struct Undo {
+      std::uint32_t voxel;
+      std::int8_t logodds;
+    };
+    std::array<Undo, 512> undo;
   };
   struct Runs {
     int unchanged = 0, crossed = 0;

@@ -57,7 +57,12 @@ struct UgvOutcome {
   // Why, the last time it was blocked (with final_mode kBlocked: why it is now).
   msg::BlockedReason blocked_reason = msg::BlockedReason::kNone;
   double goal_distance_m = 0.0;  // where it ended, from its goal (true position)
-  std::string end;               // how it ended, in words (summarise)
+  // Its first collision (collided only): when (mission time), where (true position), with what
+  // (-1 an obstacle, else the other UGV's id).
+  double collided_at_s = -1.0;
+  Vec2 collided_where = Vec2::Zero();
+  int collided_with = -1;
+  std::string end;  // how it ended, in words (summarise)
 };
 
 // Host CPU time of one kind of task over the mission (summed over the robots that run it).
