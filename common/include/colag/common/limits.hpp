@@ -47,6 +47,9 @@ inline constexpr std::size_t kMaxPredictionSteps = 256;  // collision-prediction
 inline constexpr std::size_t kMaxLidarBeams = 32;
 inline constexpr std::size_t kMaxLidarColumns = 1200;  // 0.3 deg horizontal resolution
 inline constexpr std::size_t kMaxLidarPoints = kMaxLidarBeams * kMaxLidarColumns;
+// Voxels one ray's updates are held for while the mapper may still undo them (an inferred miss
+// that meets an occupied voxel; see uav/mapper.hpp): a 15 m ray crosses at most 3 x 150.
+inline constexpr std::size_t kMaxRayUndo = 512;
 inline constexpr std::size_t kMaxRpeDetectionsPerFrame = kMaxUgvs;
 inline constexpr std::size_t kMaxRpeTags = 2 * kMaxUgvs;  // tags the camera knows (2 per UGV)
 inline constexpr std::size_t kUavOdometryHistory = 64;    // UGV side, for RPE time matching

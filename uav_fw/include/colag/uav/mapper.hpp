@@ -23,6 +23,7 @@
 
 #include "colag/common/fork_join.hpp"
 #include "colag/common/grid3d.hpp"
+#include "colag/common/limits.hpp"
 #include "colag/common/static_vector.hpp"
 #include "colag/common/status.hpp"
 #include "colag/hal/lidar.hpp"
@@ -154,13 +155,13 @@ class Mapper {
     StaticVector<Resume, limits::kMaxLidarPoints> resume;  // rays that reached the slice
     std::uint64_t rays_merged = 0, voxel_updates = 0, voxel_visits = 0, misses_undone = 0;
     // The updates of the inferred miss being traced, until it reaches the sensor or a voxel
-    // occupied now (see Mapper::trace). A ray crosses fewer voxels than this (3 x 15 m / 0.1 m);
-    // one that would cross more stops lowering voxels at the limit.
+    // occupied now (see Mapper::trace). A ray that would update more voxels stops lowering them
+    // at the limit.
     struct Undo {
       std::uint32_t voxel;
       std::int8_t logodds;
     };
-    std::array<Undo, 512> undo;
+    std::array<Undo, limits::kMaxRayUndo> undo;
   };
   struct Runs {
     int unchanged = 0, crossed = 0;
