@@ -41,9 +41,10 @@ struct MapperConfig {
   double p_hit = 0.85;
   double p_miss = 0.35;
   // A miss the firmware inferred (a beam of the pattern with no return: see no_return_beams.hpp)
-  // may be a return lost on a dark surface: it never lowers a voxel that is occupied now, and
-  // counts less elsewhere (four of them undo one hit), so a lost return does not open a hole in
-  // a box, seen or half-seen.
+  // may be a return lost on a dark surface: it ends at the first voxel on its way that is
+  // occupied now (nothing behind it is lowered: the inside of a wall, its shadow), never lowers
+  // that voxel, and counts less elsewhere (four of them undo one hit), so a lost return does not
+  // open a hole in a box, seen or half-seen.
   double p_miss_inferred = 0.47;
   double p_min = 0.12;
   double p_max = 0.90;
