@@ -97,9 +97,10 @@ inline bool Mapper::add_once(std::int8_t* logodds, std::uint64_t* touched, std::
 // crossed an obstacle seen there most likely lost its return on it, and says nothing of what lies
 // behind (the inside of a wall, its shadow). Traced backwards, the ray meets what lies behind
 // first: its updates are logged and undone when an occupied voxel turns up. (The log lives for
-// one call: a ray resumed in the sensor's slice cannot undo its half's updates. An occupied voxel
-// there would be in the sensor's own row or column, within a voxel of it: the flight layer keeps
-// obstacles a metre away.)
+// one call: a ray resumed in the sensor's slice cannot undo its half's updates. That takes an
+// occupied voxel in the sensor's own 0.1 m row or column, crossed by a ray running almost along
+// it, a few columns of a scan at most; those keep the weak miss's other rule: the occupied voxel
+// itself is never lowered.)
 bool Mapper::trace(const Vec3& a, const Vec3& b, VoxelLayer stop, bool first_is_end, bool hit,
                    bool weak, Runs& runs, Part& part, Bits& bits) {
   // Everything the loop touches is a local: the map's int8 writes may alias any memory, so

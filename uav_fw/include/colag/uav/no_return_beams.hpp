@@ -13,7 +13,8 @@
 //     a 0.2 m wall seen obliquely from 2 m lost its lower half in the UAV's map within a few
 //     passes, and UGVs drove into it;
 //   - the others (above the ground's horizon, within range of nothing) are counted by the mapper
-//     as weaker evidence (MapperConfig::p_miss_inferred) that never lowers an occupied voxel.
+//     as weaker evidence (MapperConfig::p_miss_inferred) that ends at the first occupied voxel on
+//     its way and never lowers it.
 // A surface within the minimum range (a metre) of the LiDAR is one the UAV's flight layer keeps
 // it away from.
 //
