@@ -76,10 +76,22 @@ bool run_missions(std::vector<MissionRun>& runs, const std::string& sim, int job
     std::fprintf(stderr, "colag_bench: cannot run %s\n", sim.c_str());
     return false;
   }
-  const std::string dir = "/tmp/colag_bench." + std::to_string(getpid());
-  if (std::system(("mkdir -p " + dir).c_str()) != 0) return false;
+  // A directory of its own, made new: a name from the pid alone was reused across runs (CI runs
+  // the suite several times in one container), and a mission that wrote nothing then read another
+  // run's JSON as its own.
+  char dir_template[] = "/tmp/colag_bench.XXXXXX";
+  if (mkdtemp(dir_template) == nullptr) {
+    std::fprintf(stderr, "colag_bench: cannot make a directory in /tmp\n");
+    return false;
+  }
+  const std::string dir = dir_template;
   for (std::size_t i = 0; i < runs.size(); ++i)
     runs[i].json_path = dir + "/run" + std::to_string(i) + ".json";
+  const auto remove_dir = [&] {
+    for (const MissionRun& r : runs)
+      std::remove(r.json_path.c_str());
+    rmdir(dir.c_str());
+  };
   // Each mission gets an equal share of the cores (its results do not depend on it).
   const int threads =
       std::clamp(static_cast<int>(std::thread::hardware_concurrency()) / jobs, 1, 8);
@@ -89,6 +101,7 @@ bool run_missions(std::vector<MissionRun>& runs, const std::string& sim, int job
     while (active < jobs && next < runs.size()) {
       if (!start(runs[next], sim, max_time_s, threads)) {
         std::fprintf(stderr, "colag_bench: cannot start %s\n", sim.c_str());
+        remove_dir();
         return false;
       }
       ++next;
@@ -115,6 +128,7 @@ bool run_missions(std::vector<MissionRun>& runs, const std::string& sim, int job
       std::fflush(stdout);
     }
   }
+  remove_dir();
   return true;
 }
 
