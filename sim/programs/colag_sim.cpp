@@ -126,6 +126,12 @@ int run(int argc, char** argv) {
   app.add_option("--predict-horizon", cfg.predict_horizon_m,
                  "UGV collision-prediction horizon, m (paper: 2)")
       ->check(CLI::Range(0.1, 20.0));
+  app.add_option("--scouting", cfg.scouting,
+                 "on: with nothing requested, the UAV maps where the UGVs' paths meet unknown "
+                 "ground soonest (beyond the paper)")
+      ->transform(
+          CLI::CheckedTransformer(std::map<std::string, bool>{{"on", true}, {"off", false}}))
+      ->default_str("off");
   app.add_option("--threads", cfg.threads,
                  "cores the simulation may use (the results are the same for any number)")
       ->check(CLI::Range(1, 8));

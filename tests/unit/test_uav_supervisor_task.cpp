@@ -116,7 +116,9 @@ struct Rig {
     EXPECT_TRUE(ex.add(uav->rows()));  // the UAV's own schedule table
     EXPECT_TRUE(ex.init());
   }
-  void status(RobotId id, Vec2 p, msg::UgvMode mode = msg::UgvMode::kDriving) {
+  // `scout_in_s` >= 0: its path meets unknown ground at `scout` in that many seconds.
+  void status(RobotId id, Vec2 p, msg::UgvMode mode = msg::UgvMode::kDriving,
+              Vec2 scout = Vec2::Zero(), double scout_in_s = -1.0) {
     msg::UgvStatus s;
     s.stamp = ex.now();
     s.ugv_id = id;
@@ -124,6 +126,9 @@ struct Rig {
     s.position_m[0] = p.x();
     s.position_m[1] = p.y();
     s.yaw_rad = -M_PI / 2;
+    s.scout_point_m[0] = scout.x();
+    s.scout_point_m[1] = scout.y();
+    s.scout_in_s = scout_in_s;
     ASSERT_TRUE(bus->publish(s));
   }
   void request(RobotId id, Vec2 support, double t_pc, bool cancel = false) {
@@ -228,6 +233,61 @@ TEST(UavSupervisorTask, HoverTimeoutGivesOthersATurn) {
     rig.ex.run_until(rig.ex.now() + 1s);
   }
   EXPECT_LT(rig.distance_to(a), 3.0);
+}
+
+TEST(UavSupervisorTask, ScoutsWhereAPathMeetsTheUnknownSoonestAndARequestComesFirst) {
+  UavSupervisorConfig config;
+  config.scouting = true;
+  Rig rig(nullptr, config);
+  // UGV 1's path meets unknown ground in 5 s at c, UGV 0's in 20 s at d; nothing requested.
+  const Vec2 c(-6.0, -6.0), d(6.0, -6.0), a(6.0, 0.0);
+  const auto statuses = [&] {
+    rig.status(0, Vec2(6, 2), msg::UgvMode::kDriving, d, 20.0);
+    rig.status(1, Vec2(-6, -2), msg::UgvMode::kDriving, c, 5.0);
+  };
+  for (int i = 0; i < 8 && rig.distance_to(c) > 3.0; ++i) {
+    statuses();
+    rig.ex.run_until(rig.ex.now() + 1s);
+  }
+  EXPECT_LT(rig.distance_to(c), 3.0);  // circling c (2 m radius)
+  EXPECT_EQ(rig.uav->mode(), UavMode::kScout);
+  EXPECT_TRUE(rig.plans.got.empty() || rig.plans.got.back().stops.count == 0);
+  // UGV 0 asks for support at a: that comes first, whatever is being scouted.
+  rig.request(0, a, 6.0);
+  rig.ex.run_until(rig.ex.now() + 200ms);
+  EXPECT_EQ(rig.uav->mode(), UavMode::kTransit);
+  for (int i = 0; i < 12 && rig.distance_to(a) > 1.0; ++i) {
+    statuses();
+    rig.request(0, a, 6.0 - i);
+    rig.ex.run_until(rig.ex.now() + 1s);
+  }
+  EXPECT_LT(rig.distance_to(a), 1.0);
+  // Served: back to scouting. UGV 1's point never moves (a cell the UAV cannot map): after
+  // scout_timeout circling it, the UAV leaves it for UGV 0's.
+  rig.request(0, a, 0.0, /*cancel=*/true);
+  for (int i = 0; i < 30 && rig.uav->health().scout_timeouts == 0; ++i) {
+    statuses();
+    rig.ex.run_until(rig.ex.now() + 1s);
+  }
+  EXPECT_EQ(rig.uav->health().scout_timeouts, 1u);
+  for (int i = 0; i < 12 && rig.distance_to(d) > 3.0; ++i) {
+    statuses();
+    rig.ex.run_until(rig.ex.now() + 1s);
+  }
+  EXPECT_LT(rig.distance_to(d), 3.0);
+  EXPECT_GT(rig.uav->health().mode_steps[static_cast<std::size_t>(UavMode::kScout)], 0u);
+}
+
+TEST(UavSupervisorTask, WithoutScoutingItLeadsTheUgvsAndNeverScouts) {
+  Rig rig;  // scouting off: the paper's idle
+  for (int i = 0; i < 6; ++i) {
+    rig.status(0, Vec2(6, 2), msg::UgvMode::kDriving, Vec2(6, -6), 20.0);
+    rig.ex.run_until(rig.ex.now() + 1s);
+  }
+  EXPECT_EQ(rig.uav->mode(), UavMode::kIdle);
+  EXPECT_EQ(rig.uav->health().mode_steps[static_cast<std::size_t>(UavMode::kScout)], 0u);
+  EXPECT_LT(rig.distance_to(Vec2(6, 2)), 4.0);   // by the UGV it leads
+  EXPECT_GT(rig.distance_to(Vec2(6, -6)), 4.0);  // not at its scouting point
 }
 
 TEST(UavSupervisorTask, MapPatchesReachEveryUgvAtItsOwnRate) {

@@ -95,6 +95,15 @@ class SupportLog final : public platform::SampleSink {
   msg::CollisionInfo last;
 };
 
+// Keeps the last status the UGV sent.
+class StatusLog final : public platform::SampleSink {
+ public:
+  void on_sample(msg::Topic, const void* s, TimePoint) override {
+    last = *static_cast<const msg::UgvStatus*>(s);
+  }
+  msg::UgvStatus last;
+};
+
 // What the real-time executor does when the planning loop overruns: report it every step.
 class OverrunReporter final : public platform::Task {
  public:
@@ -288,6 +297,30 @@ TEST(UgvNavTask, StopsBeforeTheUnknownAsksForSupportAndGoesOnOnceItIsMapped) {
   EXPECT_GE(rig.support.cancels, 1);
   EXPECT_TRUE(rig.support.last.cancel);
   EXPECT_LT((rig.world->truth.p - Vec2(6.0, 0.0)).norm(), 0.35);
+}
+
+TEST(UgvNavTask, ItsStatusSaysWhereItsPathFirstMeetsTheUnknownAndWhen) {
+  Rig rig(Vec2(8.0, 0.0));
+  StatusLog statuses;
+  ASSERT_TRUE(rig.bus->subscribe(msg::topic_of<msg::UgvStatus>, kAnyRobot, statuses));
+  rig.publish_map(-3.2, -3.2, 2.5, 3.2);  // known free up to x = 2.5, unknown beyond
+  ASSERT_TRUE(rig.run_until([&] { return rig.world->truth.p.x() > 0.3; }, 20s));
+  rig.ex.run_until(rig.ex.now() + 200ms);  // a status sent since
+  const msg::UgvStatus& s = statuses.last;
+  ASSERT_GE(s.scout_in_s, 0.0);
+  // The first path point whose CP-Map cell has an unknown cell within the body's radius.
+  EXPECT_GT(s.scout_point_m[0], 2.5 - 0.25 - 0.15);
+  EXPECT_LT(s.scout_point_m[0], 2.5 + 0.05);
+  EXPECT_NEAR(s.scout_point_m[1], 0.0, 0.2);
+  // Driving there at no more than v_max, and not slower than the trajectory's own timing
+  // (which brakes to rest at the goal 8 m on): a few seconds.
+  const double ahead = s.scout_point_m[0] - rig.world->truth.p.x();
+  EXPECT_GE(s.scout_in_s, ahead / rig.config.limits.v_max_mps - 0.3);
+  EXPECT_LE(s.scout_in_s, ahead / rig.config.limits.v_max_mps + 2.0);
+
+  rig.publish_map(2.2, -3.2, 9.6, 3.2);  // all of its way mapped: nothing to scout
+  rig.ex.run_until(rig.ex.now() + 1s);
+  EXPECT_LT(statuses.last.scout_in_s, 0.0);
 }
 
 TEST(UgvNavTask, PersistentOverrunsShortenThePredictionButItStillStopsBeforeTheUnknown) {

@@ -298,6 +298,9 @@ void UavSupervisorTask::read_statuses(TimePoint now) {
     Ugv& u = ugvs_[s.ugv_id];
     u.known = true;
     u.heard = now;
+    if (!std::isfinite(s.scout_point_m[0]) || !std::isfinite(s.scout_point_m[1]) ||
+        !std::isfinite(s.scout_in_s))
+      s.scout_in_s = -1.0;  // no scouting point: the rest of the status stands
     u.status = s;
   }
 }
@@ -370,9 +373,11 @@ bool UavSupervisorTask::choose_target(TimePoint now, Vec2& target) {
     target = requests_[static_cast<std::size_t>(target_ugv_)].support;
     return true;
   }
+  target_is_request_ = false;
+  target_is_scout_ = false;
+  if (config_.scouting && choose_scout_point(now, target)) return true;
   // Nothing requested: visit the UGV not seen for the longest (keep every estimator fed); a
   // blocked one only when no other needs a visit (it has said we cannot help it now).
-  target_is_request_ = false;
   int best = -1;
   const auto before = [&](const Ugv& u, const Ugv& b) {
     const bool u_blocked = u.status.mode == msg::UgvMode::kBlocked;
@@ -395,6 +400,32 @@ bool UavSupervisorTask::choose_target(TimePoint now, Vec2& target) {
   target = p;
   if (to_goal.norm() > 1e-3)
     target += std::min(config_.lead_m, to_goal.norm()) * to_goal.normalized();
+  return true;
+}
+
+// The UGV that will reach unknown ground soonest: its path's first unknown point. The one we are
+// scouting for keeps it unless another is sooner by scout_switch_s (no dithering between two).
+bool UavSupervisorTask::choose_scout_point(TimePoint now, Vec2& target) {
+  int best = -1;
+  double best_in = 0.0;
+  for (RobotId id = 0; id < limits::kMaxUgvs; ++id) {
+    const Ugv& u = ugvs_[id];
+    if (!u.known || now - u.heard > config_.status_timeout || u.status.scout_in_s < 0.0 ||
+        now < u.scout_rest_until || u.status.mode == msg::UgvMode::kArrived)
+      continue;
+    double in = u.status.scout_in_s;
+    if (id == scout_ugv_) in -= config_.scout_switch_s;
+    if (best < 0 || in < best_in) {
+      best = id;
+      best_in = in;
+    }
+  }
+  scout_ugv_ = best;
+  if (best < 0) return false;
+  const msg::UgvStatus& s = ugvs_[static_cast<std::size_t>(best)].status;
+  target_ugv_ = best;
+  target_is_scout_ = true;
+  target = Vec2(s.scout_point_m[0], s.scout_point_m[1]);
   return true;
 }
 
@@ -449,27 +480,34 @@ void UavSupervisorTask::scheduling_step(TimePoint now) {
   Vec2 target;
   if (!choose_target(now, target)) {
     mode_ = UavMode::kIdle;
+    ++health_.mode_steps[static_cast<std::size_t>(mode_)];
     publish_plan(now, previous_first != first);
     return;
   }
   const Vec2 here = state_.pose.p.head<2>();
-  // A different stop (or the same UGV's point moved): fly there first.
-  if (!target_is_request_ || (target - stop_point_).norm() > config_.served_moved_m)
-    at_stop_ = false;
+  // A different stop (or the same UGV's point moved): fly there first. Support points and
+  // scouting points are circled once reached.
+  const bool circled = target_is_request_ || target_is_scout_;
+  if (!circled || (target - stop_point_).norm() > config_.served_moved_m) at_stop_ = false;
   stop_point_ = target;
-  if (target_is_request_ && !at_stop_ && (target - here).norm() <= config_.arrival_radius_m) {
+  if (circled && !at_stop_ && (target - here).norm() <= config_.arrival_radius_m) {
     at_stop_ = true;
     hover_since_ = now;
     orbit_phase_ = std::atan2(here.y() - target.y(), here.x() - target.x());
   }
   if (at_stop_) {
-    mode_ = UavMode::kHover;
+    mode_ = target_is_scout_ ? UavMode::kScout : UavMode::kHover;
     orbit_phase_ += config_.orbit_speed_mps / config_.orbit_radius_m *
                     to_seconds(config_.schedule.scheduling.period);
     const Vec2 orbit =
         target + config_.orbit_radius_m * Vec2(std::cos(orbit_phase_), std::sin(orbit_phase_));
     flight_.set_target(orbit, now, here, flight_layer_);
-    if (elapsed(now, hover_since_, config_.hover_timeout)) {
+    if (target_is_scout_ && elapsed(now, hover_since_, config_.scout_timeout)) {
+      // Its point stays where it was: a cell we do not see from here. Scout for the others.
+      ugvs_[static_cast<std::size_t>(target_ugv_)].scout_rest_until = now + config_.scout_rest;
+      ++health_.scout_timeouts;
+      at_stop_ = false;
+    } else if (!target_is_scout_ && elapsed(now, hover_since_, config_.hover_timeout)) {
       // The UGV keeps asking although we are there: give the others a turn.
       Request& r = requests_[static_cast<std::size_t>(target_ugv_)];
       r.served = true;
@@ -480,9 +518,12 @@ void UavSupervisorTask::scheduling_step(TimePoint now) {
       at_stop_ = false;
     }
   } else {
-    mode_ = target_is_request_ ? UavMode::kTransit : UavMode::kIdle;
+    mode_ = target_is_request_ ? UavMode::kTransit
+            : target_is_scout_ ? UavMode::kScout
+                               : UavMode::kIdle;
     flight_.set_target(target, now, here, flight_layer_);
   }
+  ++health_.mode_steps[static_cast<std::size_t>(mode_)];
   publish_plan(now, previous_first != first);
 }
 

@@ -608,8 +608,31 @@ void UgvNavTask::publish_status(TimePoint now) {
   s.degradation = static_cast<std::uint8_t>(health_.degradation);
   s.base_fault = base_fault_.fault;
   s.base_error = base_fault_.code;
+  fill_scout_point(s);
   (void)transport_.publish(s);
   last_status_ = s;
+}
+
+// The first trajectory sample ahead whose CP-Map cell is blocked by an unknown cell: the stop
+// the UGV will have to ask support for unless the UAV maps there first.
+void UgvNavTask::fill_scout_point(msg::UgvStatus& s) const {
+  s.scout_in_s = -1.0;
+  if (config_.scout_range_m <= 0.0 || trajectory_.empty() || arrived_ ||
+      mode_ == msg::UgvMode::kAborted)
+    return;
+  const std::size_t from = std::min(controller_.progress(), trajectory_.size() - 1);
+  const TrajectorySample& here = trajectory_[from];
+  const GridGeometry2d& g = map_.geometry();
+  for (std::size_t i = from; i < trajectory_.size(); ++i) {
+    const TrajectorySample& q = trajectory_[i];
+    if (q.s_m - here.s_m > config_.scout_range_m) return;
+    const CellIndex c = g.cell_of(q.p);
+    if (g.contains(c) && !map_.near_unknown_at(g.index(c))) continue;
+    s.scout_point_m[0] = q.p.x();
+    s.scout_point_m[1] = q.p.y();
+    s.scout_in_s = std::max(0.0, q.t_s - here.t_s);
+    return;
+  }
 }
 
 }  // namespace colag::ugv

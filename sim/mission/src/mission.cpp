@@ -369,6 +369,7 @@ std::unique_ptr<Mission> Mission::compose(const MissionConfig& cfg, std::string&
       uc.scheduler.mode = uav::ScheduleMode::kNoScheduling;
     if (cfg.ablation == Ablation::kNoTimeWindows)
       uc.scheduler.mode = uav::ScheduleMode::kNoTimeWindows;
+    uc.scouting = cfg.scouting;
     uc.lidar_pattern = beam_pattern_of(wc.lidar);
     uc.camera_view = camera_view_of(wc.camera);
     sim::SimWorld& w = *p->world;
@@ -614,6 +615,15 @@ MissionOutcome Mission::collect(MissionTrace* trace) const {
     out.map_patch_bytes = p.uav->sharer().counters().bytes;
     out.schedules = p.uav->health().schedules;
     out.schedules_exact = p.uav->health().schedules_exact;
+    const auto mode_s = [&](uav::UavMode m) {
+      return static_cast<double>(p.uav->health().mode_steps[static_cast<std::size_t>(m)]) *
+             to_seconds(p.uav->config().schedule.scheduling.period);
+    };
+    out.uav_idle_s = mode_s(uav::UavMode::kIdle);
+    out.uav_transit_s = mode_s(uav::UavMode::kTransit);
+    out.uav_hover_s = mode_s(uav::UavMode::kHover);
+    out.uav_scout_s = mode_s(uav::UavMode::kScout);
+    out.scout_timeouts = p.uav->health().scout_timeouts;
     out.team_located = p.uav->team_filter().counters().located;
     out.team_returns_dropped = p.uav->team_filter().counters().dropped;
   }

@@ -215,6 +215,11 @@ std::string to_json(const MissionOutcome& o, bool include_wall_time) {
   j["map_patch_bytes"] = o.map_patch_bytes;
   j["schedules"] = o.schedules;
   j["schedules_exact"] = o.schedules_exact;
+  j["uav_time_s"] = {{"idle", o.uav_idle_s},
+                     {"transit", o.uav_transit_s},
+                     {"hover", o.uav_hover_s},
+                     {"scout", o.uav_scout_s}};
+  j["scout_timeouts"] = o.scout_timeouts;
   j["team_located"] = o.team_located;
   j["team_returns_dropped"] = o.team_returns_dropped;
   return j.dump(2);

@@ -139,11 +139,17 @@ struct UgvStatus {
   std::uint8_t degradation = 0;       // health: 0 = full work; > 0 = shedding work (overruns)
   BaseFault base_fault = BaseFault::kNone;  // with kFault: why
   std::uint32_t base_error = 0;             // the base's own error code (with kMotorError)
+  // Where its planned path first comes near an unknown cell (beyond where it is now, within its
+  // scout range), and in how many seconds of driving it gets there; < 0: none. The UAV maps
+  // there when it has nothing requested (scouting), before the UGV has to stop and ask.
+  double scout_point_m[2] = {};
+  double scout_in_s = -1.0;
   friend bool operator==(const UgvStatus&, const UgvStatus&) = default;
 };
 COLAG_MESSAGE_FIELDS(UgvStatus, stamp, ugv_id, mode, position_m, yaw_rad, covariance, velocity_mps,
                      yaw_rate_radps, goal_m, waiting_time_s, blocked_reason, clock_error_s,
-                     rejected_inputs, overruns, degradation, base_fault, base_error);
+                     rejected_inputs, overruns, degradation, base_fault, base_error, scout_point_m,
+                     scout_in_s);
 
 // Superseded by the next one 100 ms later: best effort; a UGV is expected every 500 ms.
 template <>

@@ -66,6 +66,16 @@ struct UavSupervisorConfig {
   double orbit_radius_m = 2.0;
   double orbit_speed_mps = 1.5;
   double lead_m = 3.0;  // idle: fly this far ahead of the UGV, towards its goal
+  // Scouting (beyond the paper): with nothing requested, circle the point where a UGV's planned
+  // path first comes near unknown cells soonest (UgvStatus::scout_point_m), so that it is mapped
+  // before that UGV has to stop and ask. Requests always come first. Off: the paper's idle (lead
+  // the UGV not seen for the longest).
+  bool scouting = false;
+  double scout_switch_s = 2.0;  // another UGV's point is taken only if sooner by this much
+  // Circling one point this long without its UGV moving it on (a cell the LiDAR cannot see):
+  // that UGV's points are left for scout_rest.
+  Duration scout_timeout = std::chrono::seconds(6);
+  Duration scout_rest = std::chrono::seconds(15);
   Duration hover_timeout = std::chrono::seconds(10);
   // A second of lateness at a UGV that has asked for this long costs 1 + age / lateness_aging:
   // with lateness alone, a far UGV already late is served last whenever a nearer one asks in
@@ -90,7 +100,8 @@ struct UavSupervisorConfig {
   Duration max_odometry_prediction = std::chrono::milliseconds(200);
 };
 
-enum class UavMode : std::uint8_t { kIdle, kTransit, kHover };
+// kScout: flying to or circling a scouting point (nothing requested).
+enum class UavMode : std::uint8_t { kIdle, kTransit, kHover, kScout };
 
 struct UavHealth {
   std::uint64_t odometry_rejected = 0;  // the UAV's own odometry: not finite, or its stamp
@@ -104,9 +115,12 @@ struct UavHealth {
   std::uint64_t schedules = 0;
   std::uint64_t schedules_exact = 0;
   std::uint64_t hover_timeouts = 0;
-  std::uint64_t flight_lost = 0;   // times the flight controller left the mission
-  std::uint64_t window_moves = 0;  // the maps' window moved with the UAV
-  StampCounters stamps;            // every input stream's stamp checks, summed (scheduling loop)
+  // Scheduling steps spent in each UavMode (idle, transit, hover, scout): where its time goes.
+  std::array<std::uint64_t, static_cast<std::size_t>(UavMode::kScout) + 1> mode_steps{};
+  std::uint64_t scout_timeouts = 0;  // scouting points left unmapped (scout_timeout)
+  std::uint64_t flight_lost = 0;     // times the flight controller left the mission
+  std::uint64_t window_moves = 0;    // the maps' window moved with the UAV
+  StampCounters stamps;              // every input stream's stamp checks, summed (scheduling loop)
 };
 
 class UavSupervisorTask {
@@ -164,6 +178,7 @@ class UavSupervisorTask {
     TimePoint heard{};
     TimePoint last_seen = kNever;  // last relative pose of it
     msg::UgvStatus status;
+    TimePoint scout_rest_until{};  // its scouting points are not flown to before this
   };
 
   Status init(TimePoint now);
@@ -176,6 +191,7 @@ class UavSupervisorTask {
   void read_statuses(TimePoint now);
   void solve(TimePoint now);
   bool choose_target(TimePoint now, Vec2& target);
+  bool choose_scout_point(TimePoint now, Vec2& target);
   void keep_map_window();
   void refresh_flight_layer();
   void filter_team(TimePoint now);
@@ -220,6 +236,8 @@ class UavSupervisorTask {
   std::array<Ugv, limits::kMaxUgvs> ugvs_{};
   int target_ugv_ = -1;  // UGV whose support point we fly to, -1: none
   bool target_is_request_ = false;
+  bool target_is_scout_ = false;
+  int scout_ugv_ = -1;    // the UGV whose point we last scouted (hysteresis)
   bool at_stop_ = false;  // reached the current support point: circling it
   Vec2 stop_point_ = Vec2::Zero();
   double orbit_phase_ = 0.0;

@@ -48,6 +48,10 @@ struct UgvNavConfig {
   double stop_time_s = 0.4;        // t_c: stop when a collision is predicted sooner
   double resume_margin_s = 0.2;    // hysteresis before driving on
   double robot_stop_time_s = 1.5;  // stop for another UGV predicted closer than this
+  // Its status says where, within this far along its planned path, the path first comes near an
+  // unknown cell (UgvStatus::scout_point_m): where the UAV scouts when nothing is requested.
+  // 0: never said.
+  double scout_range_m = 12.0;
   Duration replan_period = std::chrono::seconds(1);
   Duration no_path_retry = std::chrono::seconds(1);
   double replan_cross_track_m = 0.5;  // off the path by more than this => replan

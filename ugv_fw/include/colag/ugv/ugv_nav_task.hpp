@@ -184,6 +184,7 @@ class UgvNavTask {
   void replan(TimePoint now);
   void predict_and_request(TimePoint now);
   void publish_status(TimePoint now);
+  void fill_scout_point(msg::UgvStatus& s) const;
   void publish_request(msg::CollisionInfo& ci);  // stamped in fleet time
 
   StampLimits stamp_limits(bool increasing) const {

@@ -88,6 +88,7 @@ struct MissionConfig {
   double goal_tolerance_m =
       0.5;  // "reached": stopped at the goal with the true position this close
   double predict_horizon_m = 2.0;  // UGV collision-prediction horizon (straight-line distance)
+  bool scouting = false;           // the UAV maps the UGVs' paths ahead when nothing is requested
   int threads = 2;  // cores the simulation may use (1..8); the results do not depend on it
   FaultConfig faults;
   ClockConfig clocks;       // none set: the world profile's

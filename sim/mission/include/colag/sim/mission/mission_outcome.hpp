@@ -106,6 +106,11 @@ struct MissionOutcome {
   std::uint64_t map_patch_bytes = 0;  // payload bytes of every patch sent
   std::uint64_t schedules = 0;
   std::uint64_t schedules_exact = 0;
+  // The UAV's time by what it did (after its first odometry): nothing to do or leading a UGV
+  // (idle), flying to a support point (transit), circling one (hover), scouting; and the
+  // scouting points it left unmapped (scout_timeout).
+  double uav_idle_s = 0.0, uav_transit_s = 0.0, uav_hover_s = 0.0, uav_scout_s = 0.0;
+  std::uint64_t scout_timeouts = 0;
   // The UAV's team filter: times a UGV became located (its mapped body forgotten), and LiDAR
   // returns kept out of the map as a live UGV's.
   std::uint64_t team_located = 0;
