@@ -1,32 +1,17 @@
 // The world profiles: the shipped field.yaml is the field world's defaults, and a scenario file
 // with a mistake is refused with the key and the problem.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
-#include <cstdio>
-#include <fstream>
 #include <string>
-#include <vector>
 
 #include "colag/sim/mission/world_file.hpp"
+#include "temp_file.hpp"
 
 using namespace colag;
 
 namespace {
 std::string write(const std::string& name, const std::string& text) {
-  // The pid in the name: the tests run in parallel processes (and two suites may run at once).
-  // Removed when the test program ends.
-  static struct Written {
-    std::vector<std::string> paths;
-    ~Written() {
-      for (const std::string& p : paths)
-        std::remove(p.c_str());
-    }
-  } written;
-  std::string path = ::testing::TempDir() + "colag_" + std::to_string(::getpid()) + "_" + name;
-  std::ofstream(path) << text;
-  written.paths.push_back(path);
-  return path;
+  return test::write_temp_file(name, text);
 }
 }  // namespace
 

@@ -234,11 +234,11 @@ class UavSupervisorTask {
   StaticVector<RobotId, kMaxStops> stop_ugv_;  // schedule node k -> UGV id
   std::array<Request, limits::kMaxUgvs> requests_{};
   std::array<Ugv, limits::kMaxUgvs> ugvs_{};
-  int target_ugv_ = -1;  // UGV whose support point we fly to, -1: none
+  int target_ugv_ = -1;  // UGV whose support or scouting point we fly to, -1: none
   bool target_is_request_ = false;
   bool target_is_scout_ = false;
   int scout_ugv_ = -1;    // the UGV whose point we last scouted (hysteresis)
-  bool at_stop_ = false;  // reached the current support point: circling it
+  bool at_stop_ = false;  // reached the current support or scouting point: circling it
   Vec2 stop_point_ = Vec2::Zero();
   double orbit_phase_ = 0.0;
   TimePoint hover_since_ = kNever;
