@@ -7,6 +7,8 @@ namespace colag::platform {
 WorkerPool::WorkerPool(int extra_threads, Duration spin) : spin_(spin) {
   for (int i = 0; i < extra_threads; ++i)
     threads_.emplace_back([this] { worker_main(); });
+  std::unique_lock lock(mutex_);
+  done_.wait(lock, [&] { return started_ == static_cast<int>(threads_.size()); });
 }
 
 WorkerPool::~WorkerPool() {
@@ -50,7 +52,13 @@ void WorkerPool::run_parts(std::unique_lock<std::mutex>& lock) {
 }
 
 void WorkerPool::worker_main() {
-  std::uint64_t seen = generation_.load();
+  std::uint64_t seen = 0;
+  {
+    const std::lock_guard lock(mutex_);
+    seen = generation_.load();
+    ++started_;
+  }
+  done_.notify_all();
   for (;;) {
     const auto until = std::chrono::steady_clock::now() + spin_;
     while (generation_.load(std::memory_order_relaxed) == seen &&

@@ -216,20 +216,6 @@ TEST(Mission, SameSeedSameMissionBitForBit) {
   EXPECT_NE(a, to_json(run(cfg), false));
 }
 
-// Each UGV's tasks are a lane of the executor: on two threads the UGVs' planning runs side by
-// side (their samples reach the bus in lane order afterwards). Also run under ThreadSanitizer.
-TEST(Mission, UgvLanesOnTwoThreadsFlyTheSameMissionAsOnOne) {
-  MissionConfig cfg;
-  cfg.scenario = "dense";
-  cfg.ugvs = 4;
-  cfg.seed = 3;
-  cfg.max_time_s = 15;
-  cfg.threads = 2;
-  const std::string two = to_json(run(cfg), /*include_wall_time=*/false);
-  cfg.threads = 1;
-  EXPECT_EQ(two, to_json(run(cfg), false));
-}
-
 TEST(Mission, RejectsABadConfiguration) {
   MissionConfig cfg;
   std::string error;
