@@ -13,13 +13,11 @@ using namespace colag;
 using namespace colag::mission;
 
 namespace {
-std::string write(const std::string& name, const std::string& text) {
-  return test::write_temp_file(name, text);
-}
 std::string refusal(const std::string& text) {
   MissionConfig cfg;
   std::string error;
-  EXPECT_FALSE(load_scenario_file(write("scenario.yaml", text), cfg, error)) << text;
+  EXPECT_FALSE(load_scenario_file(test::write_temp_file("scenario.yaml", text), cfg, error))
+      << text;
   return error;
 }
 }  // namespace
@@ -42,7 +40,8 @@ TEST(ScenarioFile, ASiteSizesTheGeneratorAndACountLaysTheUgvsOutAlongIt) {
   MissionConfig cfg;
   std::string error;
   ASSERT_TRUE(load_scenario_file(
-      write("site.yaml", "map: {generator: sparse, site: [100, 60]}\nugvs: 4\n"), cfg, error))
+      test::write_temp_file("site.yaml", "map: {generator: sparse, site: [100, 60]}\nugvs: 4\n"),
+      cfg, error))
       << error;
   EXPECT_EQ(cfg.site, Vec2(100.0, 60.0));
   ASSERT_EQ(cfg.placements.size(), 4u);
@@ -142,10 +141,11 @@ TEST(ScenarioFile, FaultWindowsAndWheelBiasReachTheMission) {
   MissionConfig cfg;
   std::string error;
   ASSERT_TRUE(load_scenario_file(
-      write("faults.yaml",
-            "map: {generator: dense}\nugvs:\n  - {start: [0, 16, -90], goal: [0, -16]}\n"
-            "faults: {blackout: [10, 12], uav_blackout: [20, 30.5], rpe_blackout: [40, 60],\n"
-            "         odom_bias_percent: -3}\n"),
+      test::write_temp_file(
+          "faults.yaml",
+          "map: {generator: dense}\nugvs:\n  - {start: [0, 16, -90], goal: [0, -16]}\n"
+          "faults: {blackout: [10, 12], uav_blackout: [20, 30.5], rpe_blackout: [40, 60],\n"
+          "         odom_bias_percent: -3}\n"),
       cfg, error))
       << error;
   EXPECT_DOUBLE_EQ(cfg.faults.blackout.from_s, 10.0);
@@ -161,8 +161,8 @@ TEST(ScenarioFile, GeneratorParametersReachTheMap) {
   MissionConfig cfg;
   std::string error;
   ASSERT_TRUE(load_scenario_file(
-      write("rooms.yaml",
-            "map: {generator: rooms, rooms: [2, 4], door_m: 2, furniture: 5}\n" + one),
+      test::write_temp_file(
+          "rooms.yaml", "map: {generator: rooms, rooms: [2, 4], door_m: 2, furniture: 5}\n" + one),
       cfg, error))
       << error;
   sim::BoxWorld world;
@@ -170,8 +170,9 @@ TEST(ScenarioFile, GeneratorParametersReachTheMap) {
   // 2 x 4 rooms: 1 x 4 + 3 x 2 wall segments, each two pieces; and 5 pieces of furniture.
   EXPECT_EQ(world.boxes.size(), 2u * 10u + 5u);
   cfg = MissionConfig{};
-  ASSERT_TRUE(load_scenario_file(write("boxes.yaml", "map: {generator: sparse, boxes: 12}\n" + one),
-                                 cfg, error))
+  ASSERT_TRUE(load_scenario_file(
+      test::write_temp_file("boxes.yaml", "map: {generator: sparse, boxes: 12}\n" + one), cfg,
+      error))
       << error;
   ASSERT_TRUE(build_world(cfg, world, error)) << error;
   EXPECT_EQ(world.boxes.size(), 12u);
@@ -181,7 +182,7 @@ TEST(ScenarioFile, AUgvPassesItsRoutesPointsInOrderBeforeItsGoal) {
   // Straight from start to goal is 32 m; through the two points 46.7 m.
   MissionConfig cfg;
   std::string error;
-  ASSERT_TRUE(load_scenario_file(write("route.yaml", R"(map: {generator: sparse}
+  ASSERT_TRUE(load_scenario_file(test::write_temp_file("route.yaml", R"(map: {generator: sparse}
 world: field
 ugvs:
   - {start: [0, 16, -90], goal: [0, -16], via: [[8, 4], [-8, -4]]}

@@ -9,12 +9,6 @@
 
 using namespace colag;
 
-namespace {
-std::string write(const std::string& name, const std::string& text) {
-  return test::write_temp_file(name, text);
-}
-}  // namespace
-
 TEST(WorldProfile, TheShippedFieldFileIsTheFieldWorld) {
   sim::WorldProfile file, code = sim::field_world();
   std::string error;
@@ -41,7 +35,7 @@ TEST(WorldProfile, AFileStartsFromItsBaseAndSetsOnlyWhatItSays) {
   sim::WorldProfile w;
   std::string error;
   ASSERT_TRUE(mission::load_world_file(
-      write("ideal_plus.yaml", "base: ideal\ncamera: {miss: 0.3}\n"), w, error))
+      test::write_temp_file("ideal_plus.yaml", "base: ideal\ncamera: {miss: 0.3}\n"), w, error))
       << error;
   EXPECT_EQ(w.camera.miss, 0.3);
   EXPECT_EQ(w.wheels.scale_spread, 0.0);  // ideal
@@ -65,7 +59,8 @@ TEST(WorldProfile, MistakesAreRefusedWithTheKeyAndTheProblem) {
   for (const auto& c : cases) {
     sim::WorldProfile w;
     std::string error;
-    EXPECT_FALSE(mission::load_world_file(write("bad.yaml", c.text), w, error)) << c.text;
+    EXPECT_FALSE(mission::load_world_file(test::write_temp_file("bad.yaml", c.text), w, error))
+        << c.text;
     EXPECT_NE(error.find(c.expect), std::string::npos) << error;
     EXPECT_NE(error.find("bad.yaml"), std::string::npos) << error;
   }
