@@ -231,3 +231,97 @@ TEST(Scheduler, ClosedRoutesWithReadyTimesAsInTspTwBenchmarks) {
     EXPECT_NEAR(r.cost.travel_s, bf.travel_s, 1e-6) << trial;
   }
 }
+
+namespace {
+bool no_worse(const RouteCost& a, const RouteCost& b) {  // a is at least as good as b
+  return a.lateness_s < b.lateness_s - 1e-9 ||
+         (a.lateness_s <= b.lateness_s + 1e-9 && a.travel_s <= b.travel_s + 1e-9);
+}
+}  // namespace
+
+TEST(Scheduler, WarmStartsNeverWorsenThePlanKeepImprovingAndStayWithinBudget) {
+  Rng rng(2024);
+  SchedulerConfig cfg;
+  cfg.work_budget = 20'000;  // small, so that there is something left to improve
+  int improved = 0;
+  for (int trial = 0; trial < 20; ++trial) {
+    const ScheduleProblem p = random_instance(rng, 40, 20.0, 120.0);
+    auto scheduler = std::make_unique<Scheduler>(cfg);
+    ScheduleResult last = scheduler->solve(p);
+    const RouteCost first = last.cost;
+    for (int step = 0; step < 10; ++step) {
+      const auto order = last.order;
+      const ScheduleResult& next = scheduler->solve(p, {order.begin(), order.end()});
+      ASSERT_TRUE(no_worse(next.cost, last.cost)) << "trial " << trial << " step " << step;
+      // One move's search may finish past the budget, never more than a few times it.
+      EXPECT_LE(scheduler->last_work(), 3 * cfg.work_budget);
+      EXPECT_EQ(next.age_steps,
+                std::equal(next.order.begin(), next.order.end(), order.begin(), order.end())
+                    ? last.age_steps + 1
+                    : 0u);
+      last = next;
+    }
+    improved += !no_worse(first, last.cost);
+  }
+  EXPECT_GE(improved, 5) << "warm steps should improve some of 20 plans found with a small budget";
+}
+
+TEST(Scheduler, AWarmPlanTakesANewUrgentRequestAtOnce) {
+  Rng rng(5);
+  SchedulerConfig cfg;
+  cfg.exact_max_stops = 0;  // the heuristic's warm path, at a size the exact solver would take
+  ScheduleProblem p = random_instance(rng, 8, 60.0, 120.0);
+  auto scheduler = std::make_unique<Scheduler>(cfg);
+  const auto plan = scheduler->solve(p).order;
+  ASSERT_TRUE(scheduler->solve(p).cost.feasible);
+  // Stop 9: due as soon as the UAV can get there directly.
+  p.n = 9;
+  for (int i = 0; i <= 9; ++i) {
+    p.travel[i][9] = i == 9 ? 0.0 : 2.0;
+    p.travel[9][i] = i == 0 ? 0.0 : 2.0;
+  }
+  p.due[9] = 2.0;
+  const ScheduleResult& r = scheduler->solve(p, {plan.begin(), plan.end()});
+  ASSERT_EQ(r.order.size(), 9u);
+  EXPECT_EQ(r.order[0], 9);
+  EXPECT_TRUE(r.cost.feasible);
+}
+
+TEST(Scheduler, AWarmOrderWithStaleOrRepeatedStopsIsCleanedNotTrusted) {
+  Rng rng(6);
+  SchedulerConfig cfg;
+  cfg.exact_max_stops = 0;
+  const ScheduleProblem p = random_instance(rng, 15, 30.0, 90.0);
+  auto scheduler = std::make_unique<Scheduler>(cfg);
+  const std::uint8_t junk[] = {0, 3, 3, 200, 16, 7, 255, 7, 1};
+  const ScheduleResult& r = scheduler->solve(p, junk);
+  ASSERT_EQ(r.order.size(), 15u);
+  std::vector<std::uint8_t> sorted(r.order.begin(), r.order.end());
+  std::sort(sorted.begin(), sorted.end());
+  for (std::size_t i = 0; i < sorted.size(); ++i)
+    EXPECT_EQ(sorted[i], i + 1);
+}
+
+TEST(Scheduler, TheReportedBoundNeverExceedsTheOptimum) {
+  Rng rng(8);
+  auto scheduler = std::make_unique<Scheduler>();
+  for (int trial = 0; trial < 200; ++trial) {
+    ScheduleProblem p = random_instance(rng, 6, 2.0, 40.0);
+    p.closed = trial % 2 == 1;
+    for (int j = 1; j <= p.n; ++j) {
+      p.travel[j][0] = p.closed ? rng.uniform(0.5, 10.0) : 0.0;
+      p.ready[j] = trial % 3 == 0 ? rng.uniform(0.0, 20.0) : 0.0;
+    }
+    double min_travel = 1e300;
+    std::vector<std::uint8_t> order(static_cast<std::size_t>(p.n));
+    std::iota(order.begin(), order.end(), 1);
+    do {
+      min_travel = std::min(min_travel, evaluate(p, order).travel_s);
+    } while (std::next_permutation(order.begin(), order.end()));
+    const RouteCost best = brute_force(p);
+    const ScheduleResult& r = scheduler->solve(p);
+    EXPECT_LE(r.bound.lateness_s, best.lateness_s + 1e-9) << "trial " << trial;
+    EXPECT_LE(r.bound.travel_s, min_travel + 1e-9) << "trial " << trial;
+    EXPECT_LE(r.bound.lateness_s, r.cost.lateness_s + 1e-9);
+  }
+}

@@ -1,64 +1,60 @@
 // colag_bench: measurements of the whole system. Modes:
-//   colag_bench scheduler --instance FILE   solve a TSPTW instance (standard matrix format)
-//                                           with the UAV's scheduler and print the tour
+//   colag_bench scheduler --instance FILE|DIR [--variant closed|open|deadline] [--work W]
+//                         [--steps S]       the UAV's scheduler on TSPTW instances (standard
+//                                           matrix format): the tour, or gaps per size
 //   colag_bench tables [--seeds K] [--jobs J] [--table 1|2|all] [--csv FILE] [--quick]
 //   colag_bench safety [--seeds K] [--jobs J] [--csv FILE] [--quick]
 //                                           the paper's Table I and II, measured
 //   colag_bench speed [--runs N] [--scenario S] [--ugvs N] [--seed S] [--baseline COLAG_SIM]
 //                                           the real-time factor of one mission, N times
 #include <CLI/CLI.hpp>
-#include <chrono>
-#include <cstdio>
-#include <memory>
 
 #include "bench_safety.hpp"
+#include "bench_scheduler.hpp"
 #include "bench_speed.hpp"
 #include "bench_tables.hpp"
 #include "colag/common/limits.hpp"
 #include "colag/sim/host_program.hpp"
-#include "tsptw_instance.hpp"
+#include "colag/uav/scheduler.hpp"
 
 using namespace colag;
 
 namespace {
 
-int run_scheduler(const std::string& path, int exact_max) {
-  auto problem = std::make_unique<uav::ScheduleProblem>();
-  std::string error;
-  if (!programs::read_tsptw(path, *problem, error)) {
-    std::fprintf(stderr, "colag_bench scheduler: %s\n", error.c_str());
-    return 2;
-  }
-  uav::SchedulerConfig cfg;
-  cfg.exact_max_stops = exact_max;
-  auto scheduler = std::make_unique<uav::Scheduler>(cfg);
-  const auto t0 = std::chrono::steady_clock::now();
-  const uav::ScheduleResult& r = scheduler->solve(*problem);
-  const double ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  std::printf("instance   %s (%d customers)\n", path.c_str(), problem->n);
-  std::printf("tour       0");
-  for (const auto k : r.order)
-    std::printf(" %d", k);
-  std::printf(" 0\n");
-  std::printf("travel     %.3f\n", r.cost.travel_s);
-  std::printf("feasible   %s (total lateness %.3f)\n", r.cost.feasible ? "yes" : "no",
-              r.cost.lateness_s);
-  std::printf("optimal    %s\n", r.exact ? "proven" : "not proven (heuristic)");
-  std::printf("time       %.3f ms\n", ms);
-  return 0;
-}
-
 int run(int argc, char** argv) {
   CLI::App app{"colag_bench: ColAG-fw measurements"};
   app.require_subcommand(1);
-  auto* sched = app.add_subcommand("scheduler", "solve a TSPTW instance with the UAV's scheduler");
-  std::string instance;
-  int exact_max = uav::kExactMaxStops;
-  sched->add_option("--instance", instance, "TSPTW file: N, N x N matrix, N lines 'ready due'")
+  auto* sched = app.add_subcommand(
+      "scheduler", "the UAV's scheduler on a TSPTW instance, or on every instance in a directory");
+  programs::SchedulerBenchOptions hopt;
+  sched
+      ->add_option("--instance", hopt.instance,
+                   "TSPTW file (N, N x N matrix, N lines 'ready due') or a directory of them")
       ->required();
-  sched->add_option("--exact-max", exact_max, "largest instance solved exactly (0: heuristic only)")
+  sched
+      ->add_option("--variant", hopt.variant,
+                   "closed (the published tour), open (no way home), deadline (open, no ready)")
+      ->check(CLI::IsMember({"closed", "open", "deadline"}));
+  sched
+      ->add_option("--exact-max", hopt.exact_max,
+                   "largest instance solved exactly (0: heuristic only)")
       ->check(CLI::Range(0, uav::kExactMaxStops));
+  sched->add_option("--work", hopt.work, "heuristic work budget per step (default: firmware's)")
+      ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 40));
+  sched->add_option("--steps", hopt.steps, "solves of each instance, each warm-started (anytime)")
+      ->check(CLI::Range(1, 10000));
+  sched->add_option("--best-known", hopt.best_known,
+                    "CSV of published values (default: best_known.csv beside the instances)");
+  sched
+      ->add_option("--reference-runs", hopt.reference_runs,
+                   "open/deadline: long runs (100x work each) whose best is the reference")
+      ->check(CLI::Range(0, 100));
+  sched->add_option("--max-stops", hopt.max_stops, "skip a directory's larger instances")
+      ->check(CLI::Range(1, 1 << 30));
+  sched
+      ->add_option("--max-mean-gap", hopt.max_mean_gap_pct,
+                   "exit 1 if any size's mean gap (%) is above this or a tour is infeasible")
+      ->check(CLI::Range(0.0, 1000.0));
   auto* tables = app.add_subcommand(
       "tables", "run the paper's Table I and II (missions over seeds, in parallel)");
   programs::TablesOptions topt;
@@ -98,7 +94,7 @@ int run(int argc, char** argv) {
   speed->add_option("--baseline", popt.baseline,
                     "another colag_sim to alternate with, run for run (A/B comparison)");
   if (const auto code = sim::parse_command_line(app, argc, argv)) return *code;
-  if (*sched) return run_scheduler(instance, exact_max);
+  if (*sched) return programs::run_scheduler_bench(hopt);
   if (*tables) return programs::run_tables(topt);
   if (*safety) return programs::run_safety(sopt);
   if (*speed) return programs::run_speed(popt);

@@ -11,6 +11,7 @@ namespace colag::uav {
 namespace {
 constexpr double kEps = 1e-9;
 constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr std::size_t kRepairReach = 10;  // positions a stop moves on a route that is late
 }  // namespace
 
 RouteCost evaluate(const ScheduleProblem& p, std::span<const std::uint8_t> order, double* arrival) {
@@ -55,8 +56,49 @@ void Scheduler::finish(const ScheduleProblem& p, std::span<const std::uint8_t> o
   out.cost = evaluate(p, order, out.arrival.data());
 }
 
-const ScheduleResult& Scheduler::solve(const ScheduleProblem& problem) {
+namespace {
+
+// Lower bounds: every stop is entered once, by some leg no shorter than its quickest way in, and
+// reached no sooner than the quickest path from the start (Dijkstra over the dense matrix).
+RouteCost lower_bound(const ScheduleProblem& p) {
+  RouteCost b;
+  const int n = p.n;
+  for (int j = p.closed ? 0 : 1; j <= n; ++j) {
+    double in = kInf;
+    for (int i = j == 0 ? 1 : 0; i <= n; ++i) {
+      if (i != j) in = std::min(in, p.travel[i][j]);
+    }
+    b.travel_s += in == kInf ? 0.0 : in;
+  }
+  std::array<double, kMaxStops + 1> earliest{};
+  std::array<bool, kMaxStops + 1> done{};
+  earliest.fill(kInf);
+  earliest[0] = 0.0;
+  for (int round = 0; round <= n; ++round) {
+    int u = -1;
+    for (int i = 0; i <= n; ++i) {
+      if (!done[i] && (u < 0 || earliest[i] < earliest[u])) u = i;
+    }
+    done[u] = true;
+    for (int j = 1; j <= n; ++j) {
+      if (!done[j]) earliest[j] = std::min(earliest[j], earliest[u] + p.travel[u][j]);
+    }
+  }
+  for (int j = 1; j <= n; ++j) {
+    const double l = std::max(0.0, std::max(p.ready[j], earliest[j]) - p.due[j]);
+    b.lateness_s += p.weight[j] * l;
+    b.max_lateness_s = std::max(b.max_lateness_s, l);
+  }
+  b.feasible = b.lateness_s <= kEps;
+  return b;
+}
+
+}  // namespace
+
+const ScheduleResult& Scheduler::solve(const ScheduleProblem& problem,
+                                       std::span<const std::uint8_t> warm) {
   result_ = ScheduleResult{};
+  work_ = 0;
   const int n = std::clamp(problem.n, 0, static_cast<int>(kMaxStops));
   working_ = problem;
   working_.n = n;
@@ -70,6 +112,7 @@ const ScheduleResult& Scheduler::solve(const ScheduleProblem& problem) {
   });
   if (n == 0 || config_.mode == ScheduleMode::kNoScheduling) {
     finish(problem, {by_deadline.begin(), by_deadline.end()}, result_);
+    age_steps_ = 0;
     return result_;
   }
   if (config_.mode == ScheduleMode::kNoTimeWindows) {
@@ -80,7 +123,7 @@ const ScheduleResult& Scheduler::solve(const ScheduleProblem& problem) {
   if (!small || !solve_exact(working_, true, nullptr, result_)) {
     // No order meets every deadline (or too many stops for the exact solver): the heuristic
     // gives an incumbent; the exact solver, pruning against it, either beats it or proves it.
-    solve_heuristic(working_, !small, result_);
+    solve_heuristic(working_, !small, warm, result_);
     if (small) {
       ScheduleResult better_one;
       const RouteCost bound = result_.cost;
@@ -97,6 +140,11 @@ const ScheduleResult& Scheduler::solve(const ScheduleProblem& problem) {
   const bool exact = result_.exact;
   finish(problem, {order.begin(), order.end()}, result_);
   result_.exact = exact;
+  result_.bound = lower_bound(problem);
+  const bool same =
+      !warm.empty() && std::equal(order.begin(), order.end(), warm.begin(), warm.end());
+  age_steps_ = same ? age_steps_ + 1 : 0;
+  result_.age_steps = age_steps_;
   return result_;
 }
 
@@ -261,9 +309,8 @@ bool timing(const ScheduleProblem& p, std::span<const std::uint8_t> route, doubl
 
 }  // namespace
 
-void Scheduler::insertion(const ScheduleProblem& p, std::span<const std::uint8_t> by_deadline) {
-  route_.clear();
-  for (const std::uint8_t u : by_deadline) {
+void Scheduler::insertion(const ScheduleProblem& p, std::span<const std::uint8_t> stops) {
+  for (const std::uint8_t u : stops) {
     const std::size_t m = route_.size();
     const bool feasible = timing(p, {route_.begin(), route_.end()}, start_.data(), slack_.data());
     std::size_t best_pos = m;
@@ -314,8 +361,22 @@ void Scheduler::insertion(const ScheduleProblem& p, std::span<const std::uint8_t
 bool Scheduler::or_opt(const ScheduleProblem& p) {
   const std::size_t m = route_.size();
   const RouteCost current = cost(p, {route_.begin(), route_.end()});
+  // The route's own timing, for moves on a route that is late somewhere: a move changes the
+  // starts from its first moved position on, and only until they fall back onto the old ones.
+  std::array<double, kMaxStops + 2> old_start{}, old_late{};
+  if (!current.feasible) {
+    std::uint8_t prev = 0;
+    for (std::size_t k = 1; k <= m; ++k) {
+      const std::uint8_t u = route_[k - 1];
+      old_start[k] = std::max(p.ready[u], old_start[k - 1] + p.travel[prev][u]);
+      old_late[k] = p.weight[u] * std::max(0.0, old_start[k] - p.due[u]);
+      prev = u;
+    }
+    work_ += m;
+  }
   for (std::size_t len = 1; len <= 3 && len < m; ++len) {
     for (std::size_t from = 0; from + len <= m; ++from) {
+      if (work_ >= config_.work_budget) return false;  // out of time: this pass ends here
       // The route without the segment.
       candidate_.clear();
       for (std::size_t i = 0; i < m; ++i) {
@@ -340,12 +401,22 @@ bool Scheduler::or_opt(const ScheduleProblem& p) {
       }
       for (std::size_t q = 0; q <= r; ++q) {
         if (q == from) continue;  // its own place
+        // A late route is repaired by moving stops a short way; the long moves were most of the
+        // work there (measured on the Dumas n = 60 set: 8 -> 11 of 25 feasible in one step).
+        if (!current.feasible && (q > from + kRepairReach || from > q + kRepairReach)) continue;
         ++work_;
+        const std::uint8_t a0 = q == 0 ? 0 : candidate_[q - 1];
+        double delta = removal + internal + p.travel[a0][seg[0]];
+        if (q < r) {
+          const std::uint8_t b = candidate_[q];
+          delta += p.travel[seg[len - 1]][b] - p.travel[a0][b];
+        } else if (p.closed) {
+          delta += p.travel[seg[len - 1]][0] - p.travel[a0][0];
+        }
         if (fast) {
           // O(1): start times through the segment, then the push on the rest of the route.
-          std::uint8_t a = q == 0 ? 0 : candidate_[q - 1];
+          std::uint8_t a = a0;
           double s = start_[q];
-          double delta = removal + internal;
           bool ok = true;
           for (const std::uint8_t u : seg) {
             s = std::max(p.ready[u], s + p.travel[a][u]);
@@ -353,17 +424,44 @@ bool Scheduler::or_opt(const ScheduleProblem& p) {
             a = u;
           }
           if (!ok) continue;
-          delta += p.travel[q == 0 ? 0 : candidate_[q - 1]][seg[0]];
           if (q < r) {
             const std::uint8_t b = candidate_[q];
             if (std::max(p.ready[b], s + p.travel[a][b]) - start_[q + 1] > slack_[q + 1] + kEps)
               continue;
-            delta += p.travel[a][b] - p.travel[q == 0 ? 0 : candidate_[q - 1]][b];
           } else if (p.closed) {
             if (s + p.travel[a][0] > p.due[0] + kEps) continue;
-            delta += p.travel[a][0] - p.travel[q == 0 ? 0 : candidate_[q - 1]][0];
           }
           if (delta >= -1e-7) continue;
+        } else if (!current.feasible) {
+          // Lateness of the moved route from its first changed position until its starts meet
+          // the old ones again (from there on nothing changes).
+          const std::size_t lo = std::min(from, q);
+          const std::size_t hi = std::max(from, q) + len - 1;
+          const auto node_at = [&](std::size_t i) {
+            if (i < q) return candidate_[i];
+            if (i < q + len) return seg[i - q];
+            return candidate_[i - len];
+          };
+          double t = old_start[lo];
+          std::uint8_t prev = lo == 0 ? 0 : route_[lo - 1];
+          double late = 0.0;
+          std::size_t i = lo;
+          for (; i < m; ++i) {
+            const std::uint8_t u = node_at(i);
+            t = std::max(p.ready[u], t + p.travel[prev][u]);
+            late += p.weight[u] * std::max(0.0, t - p.due[u]) - old_late[i + 1];
+            prev = u;
+            if (i > hi && std::abs(t - old_start[i + 1]) <= kEps) break;
+          }
+          work_ += i - lo + 1;
+          if (i == m && p.closed) {
+            const double old_home = old_start[m] + p.travel[route_[m - 1]][0];
+            late += p.weight[0] * (std::max(0.0, t + p.travel[prev][0] - p.due[0]) -
+                                   std::max(0.0, old_home - p.due[0]));
+          }
+          const RouteCost moved_cost{current.lateness_s + late, current.travel_s + delta, 0.0,
+                                     false};
+          if (!better(moved_cost, current)) continue;
         }
         StaticVector<std::uint8_t, kMaxStops> moved;
         for (std::size_t i = 0; i <= r; ++i) {
@@ -387,7 +485,7 @@ bool Scheduler::or_opt(const ScheduleProblem& p) {
 bool Scheduler::two_opt(const ScheduleProblem& p) {
   const std::size_t m = route_.size();
   const RouteCost current = cost(p, {route_.begin(), route_.end()});
-  for (std::size_t i = 0; i + 1 < m; ++i) {
+  for (std::size_t i = 0; i + 1 < m && work_ < config_.work_budget; ++i) {
     for (std::size_t j = i + 1; j < m; ++j) {
       candidate_ = route_;
       std::reverse(candidate_.begin() + static_cast<std::ptrdiff_t>(i),
@@ -406,8 +504,8 @@ void Scheduler::local_search(const ScheduleProblem& p) {
   }
 }
 
-void Scheduler::solve_heuristic(const ScheduleProblem& p, bool iterate, ScheduleResult& out) {
-  work_ = 0;
+void Scheduler::solve_heuristic(const ScheduleProblem& p, bool iterate,
+                                std::span<const std::uint8_t> warm, ScheduleResult& out) {
   StaticVector<std::uint8_t, kMaxStops> order;
   for (int k = 1; k <= p.n; ++k)
     (void)order.push_back(static_cast<std::uint8_t>(k));
@@ -422,28 +520,58 @@ void Scheduler::solve_heuristic(const ScheduleProblem& p, bool iterate, Schedule
   };
   RouteCost best_cost{};
   best_.clear();
-  // Constructions: insertion by deadline, and by distance from the UAV.
   std::sort(order.begin(), order.end(), [&](std::uint8_t a, std::uint8_t b) {
     return p.due[a] != p.due[b] ? p.due[a] < p.due[b] : a < b;
   });
-  insertion(p, {order.begin(), order.end()});
-  local_search(p);
-  keep_if_better(best_cost);
+  if (!warm.empty()) {
+    // The last plan: its live stops in its order, then the new ones inserted by deadline, each
+    // where it costs least (an urgent new request goes to the front at once if it must).
+    std::array<bool, kMaxStops + 1> seen{};
+    route_.clear();
+    for (const std::uint8_t k : warm) {
+      if (k >= 1 && k <= p.n && !seen[k]) {
+        seen[k] = true;
+        (void)route_.push_back(k);
+      }
+    }
+    candidate_.clear();
+    for (const std::uint8_t k : order) {
+      if (!seen[k]) (void)candidate_.push_back(k);
+    }
+    const StaticVector<std::uint8_t, kMaxStops> missing = candidate_;
+    insertion(p, {missing.begin(), missing.end()});
+    local_search(p);
+    keep_if_better(best_cost);
+  } else {
+    rng_ = Rng(config_.seed + static_cast<std::uint64_t>(p.n));
+  }
+  // Constructions (a warm plan that meets every deadline needs none, and a warm step builds
+  // them only with work left): insertion by deadline, then by distance from the UAV.
+  const bool construct = warm.empty() || (!best_cost.feasible && work_ < config_.work_budget);
+  if (construct) {
+    route_.clear();
+    insertion(p, {order.begin(), order.end()});
+    local_search(p);
+    keep_if_better(best_cost);
+  }
   if (!iterate) {
     finish(p, {best_.begin(), best_.end()}, out);
     out.exact = false;
     return;
   }
-  std::sort(order.begin(), order.end(), [&](std::uint8_t a, std::uint8_t b) {
-    return p.travel[0][a] != p.travel[0][b] ? p.travel[0][a] < p.travel[0][b] : a < b;
-  });
-  insertion(p, {order.begin(), order.end()});
-  local_search(p);
-  keep_if_better(best_cost);
+  if (construct && (warm.empty() || work_ < config_.work_budget)) {
+    std::sort(order.begin(), order.end(), [&](std::uint8_t a, std::uint8_t b) {
+      return p.travel[0][a] != p.travel[0][b] ? p.travel[0][a] < p.travel[0][b] : a < b;
+    });
+    route_.clear();
+    insertion(p, {order.begin(), order.end()});
+    local_search(p);
+    keep_if_better(best_cost);
+  }
   // Iterated local search: perturb the best route (move a random stretch to a random place,
   // reverse another), descend again, keep improvements. Seeded: the same problem, the same
-  // answer.
-  Rng rng(0x5eedULL + static_cast<std::uint64_t>(p.n));
+  // answer; a warm start continues the last solve's sequence instead of repeating it.
+  Rng& rng = rng_;
   const std::size_t m = best_.size();
   const int patience = config_.stagnation_per_stop * p.n;
   for (int idle = 0; m >= 4 && work_ < config_.work_budget && idle < patience; ++idle) {

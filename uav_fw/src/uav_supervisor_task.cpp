@@ -315,6 +315,7 @@ void UavSupervisorTask::solve(TimePoint now) {
   problem_.n = static_cast<int>(stop_ugv_.size());
   if (problem_.n == 0) {
     schedule_ = ScheduleResult{};
+    plan_ugv_.clear();
     return;
   }
   const Vec2 p = state_.pose.p.head<2>(), v = state_.velocity_mps.head<2>();
@@ -340,18 +341,28 @@ void UavSupervisorTask::solve(TimePoint now) {
     }
   };
   build(1.0);
-  schedule_ = scheduler_.solve(problem_);
+  // The last plan, in this step's stop numbers: the scheduler continues improving it.
+  warm_.clear();
+  for (const RobotId id : plan_ugv_) {
+    for (std::size_t k = 0; k < stop_ugv_.size(); ++k) {
+      if (stop_ugv_[k] == id) (void)warm_.push_back(static_cast<std::uint8_t>(k + 1));
+    }
+  }
+  schedule_ = scheduler_.solve(problem_, {warm_.begin(), warm_.end()});
   if (config_.vmax_escalation && !schedule_.cost.feasible) {
     double speedup = 1.0;
     for (int k = 0; k < 100 && !schedule_.cost.feasible; ++k) {
       speedup *= 1.5;
       build(speedup);
-      schedule_ = scheduler_.solve(problem_);
+      schedule_ = scheduler_.solve(problem_, {warm_.begin(), warm_.end()});
     }
     build(1.0);  // report the order with the real speed
     const StaticVector<std::uint8_t, kMaxStops> order = schedule_.order;
     schedule_.cost = evaluate(problem_, {order.begin(), order.end()}, schedule_.arrival.data());
   }
+  plan_ugv_.clear();
+  for (const std::uint8_t k : schedule_.order)
+    (void)plan_ugv_.push_back(stop_ugv_[k - 1u]);
   ++health_.schedules;
   health_.schedules_exact += schedule_.exact;
 }

@@ -15,6 +15,9 @@
 //   time-slack checks (Savelsbergh), then local search (Or-opt relocation of 1-3 stops with
 //   the same O(1) checks, 2-opt reversal) iterated from seeded perturbations within a fixed
 //   work budget.
+// Anytime: given the last plan (`warm`), the heuristic starts from it (stops it does not hold
+// inserted, stops no longer live dropped) and continues its search where the last step left
+// it, so the plan improves across steps within each step's budget.
 // Ablations: kNoTimeWindows (plain open TSP: deadlines ignored while solving), kNoScheduling
 // (serve the smallest deadline first).
 #include <array>
@@ -22,6 +25,7 @@
 #include <span>
 
 #include "colag/common/limits.hpp"
+#include "colag/common/random.hpp"
 #include "colag/common/static_vector.hpp"
 
 namespace colag::uav {
@@ -62,7 +66,9 @@ struct ScheduleResult {
   StaticVector<std::uint8_t, kMaxStops> order;  // stops in visiting order
   std::array<double, kMaxStops + 1> arrival{};  // service start per node
   RouteCost cost;
+  RouteCost bound;     // no order does better than this (lateness, then travel, each a bound)
   bool exact = false;  // proven optimal for the objective
+  std::uint32_t age_steps = 0;  // warm-started solves since the order last changed
 };
 
 // Evaluates `order` (stop numbers 1..n); fills arrivals if given.
@@ -76,14 +82,19 @@ struct SchedulerConfig {
   // Bounds the solve time for any n: about 1 ms on a desktop core.
   std::uint64_t work_budget = 200'000;
   int stagnation_per_stop = 1;  // iterated search ends after n perturbations without progress
+  std::uint64_t seed = 0x5eed;  // of the search's perturbations
 };
 
 class Scheduler {
  public:
   explicit Scheduler(const SchedulerConfig& config = {}) : config_(config) {}
-  // Returns the best order found; `result.exact` tells whether it is proven optimal.
-  const ScheduleResult& solve(const ScheduleProblem& problem);
+  // Returns the best order found; `result.exact` tells whether it is proven optimal. `warm`: the
+  // last plan's order in this problem's stop numbers (entries out of range or repeated are
+  // ignored): the search continues from it; without it, the same problem gives the same answer.
+  const ScheduleResult& solve(const ScheduleProblem& problem,
+                              std::span<const std::uint8_t> warm = {});
   const SchedulerConfig& config() const { return config_; }
+  std::uint64_t last_work() const { return work_; }  // the last solve's heuristic work
 
  private:
   struct Label {
@@ -104,8 +115,10 @@ class Scheduler {
                    bool* proven = nullptr);
   // `iterate`: spend the work budget on iterated local search (when its answer is final);
   // otherwise one construction + descent (an incumbent for the exact solver to prune with).
-  void solve_heuristic(const ScheduleProblem& p, bool iterate, ScheduleResult& out);
-  void insertion(const ScheduleProblem& p, std::span<const std::uint8_t> by_deadline);
+  void solve_heuristic(const ScheduleProblem& p, bool iterate, std::span<const std::uint8_t> warm,
+                       ScheduleResult& out);
+  // Inserts `stops` one by one into route_, each where it costs least.
+  void insertion(const ScheduleProblem& p, std::span<const std::uint8_t> stops);
   bool or_opt(const ScheduleProblem& p);   // applies one improving move, if any
   bool two_opt(const ScheduleProblem& p);  // applies one improving move, if any
   void local_search(const ScheduleProblem& p);
@@ -124,6 +137,8 @@ class Scheduler {
   StaticVector<std::uint8_t, kMaxStops> route_, candidate_, best_;
   std::uint64_t work_ = 0;
   std::array<double, kMaxStops + 2> start_{}, slack_{};
+  Rng rng_{0};  // reseeded by a cold solve, continued by warm ones
+  std::uint32_t age_steps_ = 0;
 };
 
 }  // namespace colag::uav

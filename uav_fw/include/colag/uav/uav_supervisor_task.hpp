@@ -231,7 +231,9 @@ class UavSupervisorTask {
   Scheduler scheduler_;
   ScheduleProblem problem_;
   ScheduleResult schedule_;
-  StaticVector<RobotId, kMaxStops> stop_ugv_;  // schedule node k -> UGV id
+  StaticVector<RobotId, kMaxStops> stop_ugv_;   // schedule node k -> UGV id
+  StaticVector<RobotId, kMaxStops> plan_ugv_;   // the last plan's order, as UGV ids (warm start)
+  StaticVector<std::uint8_t, kMaxStops> warm_;  // that order in this step's stop numbers
   std::array<Request, limits::kMaxUgvs> requests_{};
   std::array<Ugv, limits::kMaxUgvs> ugvs_{};
   int target_ugv_ = -1;  // UGV whose support or scouting point we fly to, -1: none

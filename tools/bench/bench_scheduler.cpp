@@ -1,0 +1,214 @@
+#include "bench_scheduler.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <vector>
+
+#include "colag/uav/scheduler.hpp"
+#include "tsptw_instance.hpp"
+
+namespace colag::programs {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Outcome {
+  std::string name;
+  int n = 0;
+  double travel = 0;
+  bool feasible = false;
+  bool exact = false;
+  double reference = -1;  // < 0: none
+  double ms = 0;
+  std::uint64_t work = 0;
+};
+
+void apply_variant(const std::string& variant, uav::ScheduleProblem& p) {
+  if (variant == "closed") return;
+  p.closed = false;
+  if (variant == "deadline") {
+    for (int k = 0; k <= p.n; ++k)
+      p.ready[k] = 0.0;
+  }
+}
+
+// best_known.csv: "Benchmark Set,Instance Name,Best Known Solution,..."; returns name -> value.
+std::map<std::string, double> read_best_known(const std::string& path) {
+  std::map<std::string, double> out;
+  std::ifstream in(path);
+  std::string line;
+  while (std::getline(in, line)) {
+    std::vector<std::string> cells;
+    std::stringstream row(line);
+    std::string cell;
+    while (std::getline(row, cell, ','))
+      cells.push_back(cell);
+    if (cells.size() < 3) continue;
+    try {
+      out[cells[1]] = std::stod(cells[2]);
+    } catch (const std::exception&) {  // the header, or a cell that is not a number
+    }
+  }
+  return out;
+}
+
+struct Solved {
+  uav::ScheduleResult result;
+  double ms = 0;
+  std::uint64_t work = 0;
+};
+
+// `steps` solves of the same problem, each warm-started from the last plan (the anytime use).
+Solved solve(const uav::ScheduleProblem& p, uav::SchedulerConfig cfg, int steps) {
+  auto scheduler = std::make_unique<uav::Scheduler>(cfg);
+  Solved s;
+  const auto t0 = std::chrono::steady_clock::now();
+  for (int i = 0; i < steps; ++i) {
+    const auto warm = s.result.order;
+    s.result = scheduler->solve(p, {warm.begin(), warm.end()});
+    s.work += scheduler->last_work();
+  }
+  s.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return s;
+}
+
+double gap_pct(const Outcome& o) {
+  return o.reference > 0 ? 100.0 * (o.travel - o.reference) / o.reference : 0.0;
+}
+
+int print_one(const std::string& path, const uav::ScheduleProblem& p, const Solved& s) {
+  const uav::ScheduleResult& r = s.result;
+  std::printf("instance   %s (%d customers)\n", path.c_str(), p.n);
+  std::printf("tour       0");
+  for (const auto k : r.order)
+    std::printf(" %d", k);
+  std::printf(p.closed ? " 0\n" : "\n");
+  std::printf("travel     %.3f\n", r.cost.travel_s);
+  std::printf("feasible   %s (total lateness %.3f)\n", r.cost.feasible ? "yes" : "no",
+              r.cost.lateness_s);
+  std::printf("optimal    %s\n", r.exact ? "proven" : "not proven (heuristic)");
+  std::printf("bound      travel >= %.3f, lateness >= %.3f\n", r.bound.travel_s,
+              r.bound.lateness_s);
+  std::printf("work       %llu\n", static_cast<unsigned long long>(s.work));
+  std::printf("time       %.3f ms\n", s.ms);
+  return 0;
+}
+
+}  // namespace
+
+int run_scheduler_bench(const SchedulerBenchOptions& o) {
+  uav::SchedulerConfig cfg;
+  if (o.exact_max >= 0) cfg.exact_max_stops = o.exact_max;
+  if (o.work > 0) cfg.work_budget = o.work;
+  std::error_code ec;
+  std::vector<std::string> files;
+  const bool dir = fs::is_directory(o.instance, ec);
+  if (dir) {
+    for (const auto& e : fs::directory_iterator(o.instance, ec)) {
+      if (e.is_regular_file() && e.path().extension() == ".txt" &&
+          e.path().filename() != "README.txt")
+        files.push_back(e.path().string());
+    }
+    std::sort(files.begin(), files.end());
+    if (files.empty()) {
+      std::fprintf(stderr, "colag_bench scheduler: no *.txt instance in %s\n", o.instance.c_str());
+      return 2;
+    }
+  } else {
+    files.push_back(o.instance);
+  }
+  const std::string csv =
+      !o.best_known.empty()
+          ? o.best_known
+          : ((dir ? fs::path(o.instance) : fs::path(o.instance).parent_path()) / "best_known.csv")
+                .string();
+  if (!o.best_known.empty() && !fs::is_regular_file(o.best_known, ec)) {
+    std::fprintf(stderr, "colag_bench scheduler: %s: not a file\n", o.best_known.c_str());
+    return 2;
+  }
+  const auto best_known =
+      o.variant == "closed" ? read_best_known(csv) : std::map<std::string, double>{};
+  std::vector<Outcome> outcomes;
+  auto problem = std::make_unique<uav::ScheduleProblem>();
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    std::string error;
+    if (!read_tsptw(files[i], *problem, error)) {
+      std::fprintf(stderr, "colag_bench scheduler: %s\n", error.c_str());
+      return 2;
+    }
+    if (dir && problem->n > o.max_stops) continue;
+    apply_variant(o.variant, *problem);
+    const Solved s = solve(*problem, cfg, std::max(1, o.steps));
+    if (!dir) return print_one(files[i], *problem, s);
+    Outcome out;
+    out.name = fs::path(files[i]).filename().string();
+    out.n = problem->n;
+    out.travel = s.result.cost.travel_s;
+    out.feasible = s.result.cost.feasible;
+    out.exact = s.result.exact;
+    out.ms = s.ms;
+    out.work = s.work;
+    if (const auto it = best_known.find(out.name); it != best_known.end()) {
+      out.reference = it->second;
+    } else if (o.reference_runs > 0) {
+      // The best of several long runs, each seeded differently: a reference, not an optimum.
+      for (int run = 0; run < o.reference_runs; ++run) {
+        uav::SchedulerConfig rc = cfg;
+        rc.work_budget = 100 * cfg.work_budget;
+        rc.seed = cfg.seed + 1000 + static_cast<std::uint64_t>(run);
+        const Solved ref = solve(*problem, rc, 1);
+        if (ref.result.cost.feasible &&
+            (out.reference < 0 || ref.result.cost.travel_s < out.reference))
+          out.reference = ref.result.cost.travel_s;
+      }
+      if (out.feasible && out.reference > out.travel) out.reference = out.travel;
+    }
+    outcomes.push_back(out);
+    std::printf("%-18s n=%-3d travel %9.1f  ref %9.1f  gap %6.2f %%  %-10s %8.2f ms  work %llu\n",
+                out.name.c_str(), out.n, out.travel, out.reference, gap_pct(out),
+                out.feasible ? "feasible" : "INFEASIBLE", out.ms,
+                static_cast<unsigned long long>(out.work));
+    std::fflush(stdout);
+  }
+  // Per size: feasible share, mean and max gap against the reference, time.
+  std::map<int, std::vector<const Outcome*>> by_n;
+  for (const Outcome& out : outcomes)
+    by_n[out.n].push_back(&out);
+  std::printf("\nvariant %s, %d step(s) of %llu work each; reference: %s\n", o.variant.c_str(),
+              std::max(1, o.steps), static_cast<unsigned long long>(cfg.work_budget),
+              o.variant == "closed" ? "published optimum (best_known.csv)"
+                                    : "best of long runs (not proven optimal)");
+  std::printf("%4s %9s %10s %9s %9s %10s %10s\n", "n", "instances", "feasible", "mean gap",
+              "max gap", "mean ms", "max ms");
+  bool ok = true;
+  for (const auto& [n, list] : by_n) {
+    int feasible = 0, with_ref = 0;
+    double sum_gap = 0, max_gap = 0, sum_ms = 0, max_ms = 0;
+    for (const Outcome* out : list) {
+      feasible += out->feasible;
+      sum_ms += out->ms;
+      max_ms = std::max(max_ms, out->ms);
+      if (out->reference > 0 && out->feasible) {
+        ++with_ref;
+        sum_gap += gap_pct(*out);
+        max_gap = std::max(max_gap, gap_pct(*out));
+      }
+    }
+    const double mean_gap = with_ref > 0 ? sum_gap / with_ref : 0.0;
+    std::printf("%4d %9zu %6d/%-3zu %8.2f%% %8.2f%% %10.2f %10.2f\n", n, list.size(), feasible,
+                list.size(), mean_gap, max_gap, sum_ms / static_cast<double>(list.size()), max_ms);
+    if (o.max_mean_gap_pct >= 0 &&
+        (mean_gap > o.max_mean_gap_pct || feasible < static_cast<int>(list.size())))
+      ok = false;
+  }
+  return ok ? 0 : 1;
+}
+
+}  // namespace colag::programs
