@@ -133,9 +133,27 @@ int run_scheduler_bench(const SchedulerBenchOptions& o) {
     std::fprintf(stderr, "colag_bench scheduler: %s: not a file\n", o.best_known.c_str());
     return 2;
   }
-  const auto best_known =
-      o.variant == "closed" ? read_best_known(csv) : std::map<std::string, double>{};
+  // Closed: the published values beside the instances; any variant: the file given.
+  const auto best_known = o.variant == "closed" || !o.best_known.empty()
+                              ? read_best_known(csv)
+                              : std::map<std::string, double>{};
   std::vector<Outcome> outcomes;
+  // The references found, in best_known.csv's layout, for --best-known next time.
+  FILE* reference_out = nullptr;
+  if (!o.reference_out.empty()) {
+    reference_out = std::fopen(o.reference_out.c_str(), "w");
+    if (reference_out == nullptr) {
+      std::fprintf(stderr, "colag_bench scheduler: cannot write %s\n", o.reference_out.c_str());
+      return 2;
+    }
+    std::fprintf(reference_out, "Benchmark Set,Instance Name,Best Known Solution\n");
+  }
+  struct Closer {
+    FILE*& f;
+    ~Closer() {
+      if (f != nullptr) std::fclose(f);
+    }
+  } closer{reference_out};
   auto problem = std::make_unique<uav::ScheduleProblem>();
   for (std::size_t i = 0; i < files.size(); ++i) {
     std::string error;
@@ -158,12 +176,12 @@ int run_scheduler_bench(const SchedulerBenchOptions& o) {
     if (const auto it = best_known.find(out.name); it != best_known.end()) {
       out.reference = it->second;
     } else if (o.reference_runs > 0) {
-      // The best of several long runs, each seeded differently: a reference, not an optimum.
+      // The best of several long runs (each 100 warm steps, seeded differently): a reference,
+      // not an optimum.
       for (int run = 0; run < o.reference_runs; ++run) {
         uav::SchedulerConfig rc = cfg;
-        rc.work_budget = 100 * cfg.work_budget;
         rc.seed = cfg.seed + 1000 + static_cast<std::uint64_t>(run);
-        const Solved ref = solve(*problem, rc, 1);
+        const Solved ref = solve(*problem, rc, 100);
         if (ref.result.cost.feasible &&
             (out.reference < 0 || ref.result.cost.travel_s < out.reference))
           out.reference = ref.result.cost.travel_s;
@@ -171,6 +189,8 @@ int run_scheduler_bench(const SchedulerBenchOptions& o) {
       if (out.feasible && out.reference > out.travel) out.reference = out.travel;
     }
     outcomes.push_back(out);
+    if (reference_out != nullptr && out.reference > 0)
+      std::fprintf(reference_out, "Dumas,%s,%.0f\n", out.name.c_str(), out.reference);
     std::printf("%-18s n=%-3d travel %9.1f  ref %9.1f  gap %6.2f %%  %-10s %8.2f ms  work %llu\n",
                 out.name.c_str(), out.n, out.travel, out.reference, gap_pct(out),
                 out.feasible ? "feasible" : "INFEASIBLE", out.ms,
@@ -183,8 +203,9 @@ int run_scheduler_bench(const SchedulerBenchOptions& o) {
     by_n[out.n].push_back(&out);
   std::printf("\nvariant %s, %d step(s) of %llu work each; reference: %s\n", o.variant.c_str(),
               std::max(1, o.steps), static_cast<unsigned long long>(cfg.work_budget),
-              o.variant == "closed" ? "published optimum (best_known.csv)"
-                                    : "best of long runs (not proven optimal)");
+              !o.best_known.empty()   ? o.best_known.c_str()
+              : o.variant == "closed" ? "published optimum (best_known.csv)"
+                                      : "best of long runs (not proven optimal)");
   std::printf("%4s %9s %10s %9s %9s %10s %10s\n", "n", "instances", "feasible", "mean gap",
               "max gap", "mean ms", "max ms");
   bool ok = true;

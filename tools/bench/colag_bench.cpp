@@ -47,8 +47,10 @@ int run(int argc, char** argv) {
                     "CSV of published values (default: best_known.csv beside the instances)");
   sched
       ->add_option("--reference-runs", hopt.reference_runs,
-                   "open/deadline: long runs (100x work each) whose best is the reference")
+                   "open/deadline: long runs (100 warm steps each) whose best is the reference")
       ->check(CLI::Range(0, 100));
+  sched->add_option("--reference-out", hopt.reference_out,
+                    "write each instance's reference (best_known.csv's layout)");
   sched->add_option("--max-stops", hopt.max_stops, "skip a directory's larger instances")
       ->check(CLI::Range(1, 1 << 30));
   sched

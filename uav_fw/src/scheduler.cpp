@@ -11,7 +11,10 @@ namespace colag::uav {
 namespace {
 constexpr double kEps = 1e-9;
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr std::size_t kRepairReach = 10;  // positions a stop moves on a route that is late
+constexpr double kGain = 1e-7;             // a move must shorten the route by more than this
+constexpr std::size_t kRepairReach = 10;   // positions a stop moves on a route that is late
+constexpr std::size_t kPerturbMoves = 3;   // the search's kick: up to 3 stretches moved,
+constexpr std::size_t kPerturbReach = 15;  // each up to 15 positions
 }  // namespace
 
 RouteCost evaluate(const ScheduleProblem& p, std::span<const std::uint8_t> order, double* arrival) {
@@ -113,6 +116,8 @@ const ScheduleResult& Scheduler::solve(const ScheduleProblem& problem,
   if (n == 0 || config_.mode == ScheduleMode::kNoScheduling) {
     finish(problem, {by_deadline.begin(), by_deadline.end()}, result_);
     age_steps_ = 0;
+    last_order_.clear();
+    last_search_.clear();
     return result_;
   }
   if (config_.mode == ScheduleMode::kNoTimeWindows) {
@@ -120,10 +125,12 @@ const ScheduleResult& Scheduler::solve(const ScheduleProblem& problem,
       working_.due[k] = kInf;
   }
   const bool small = n <= std::min(config_.exact_max_stops, kExactMaxStops);
+  bool searched = false;
   if (!small || !solve_exact(working_, true, nullptr, result_)) {
     // No order meets every deadline (or too many stops for the exact solver): the heuristic
     // gives an incumbent; the exact solver, pruning against it, either beats it or proves it.
     solve_heuristic(working_, !small, warm, result_);
+    searched = true;
     if (small) {
       ScheduleResult better_one;
       const RouteCost bound = result_.cost;
@@ -141,6 +148,8 @@ const ScheduleResult& Scheduler::solve(const ScheduleProblem& problem,
   finish(problem, {order.begin(), order.end()}, result_);
   result_.exact = exact;
   result_.bound = lower_bound(problem);
+  last_order_ = order;
+  if (!searched) last_search_.clear();  // only a heuristic solve leaves a search to resume
   const bool same =
       !warm.empty() && std::equal(order.begin(), order.end(), warm.begin(), warm.end());
   age_steps_ = same ? age_steps_ + 1 : 0;
@@ -356,142 +365,163 @@ void Scheduler::insertion(const ScheduleProblem& p, std::span<const std::uint8_t
   }
 }
 
-// Or-opt: move a segment of 1-3 consecutive stops elsewhere; applies the first
-// move that improves (lateness, travel) and returns true, false at a local optimum.
-bool Scheduler::or_opt(const ScheduleProblem& p) {
+// --- moves on a route that meets every deadline ---------------------------------------------
+
+Scheduler::Piece Scheduler::stop(const ScheduleProblem& p, std::uint8_t u) {
+  Piece s;
+  s.early = p.ready[u];
+  s.late = p.due[u];
+  s.first = s.last = u;
+  s.empty = false;
+  return s;
+}
+
+Scheduler::Piece Scheduler::join(const ScheduleProblem& p, const Piece& a, const Piece& b) {
+  if (a.empty) return b;
+  if (b.empty) return a;
+  const double leg = p.travel[a.last][b.first];
+  const double shift = a.duration - a.warp + leg;
+  const double wait = std::max(b.early - shift - a.late, 0.0);
+  const double warp = std::max(a.early + shift - b.late, 0.0);
+  Piece s;
+  s.duration = a.duration + b.duration + leg + wait;
+  s.warp = a.warp + b.warp + warp;
+  s.early = std::max(b.early - shift, a.early) - wait;
+  s.late = std::min(b.late - shift, a.late) + warp;
+  s.travel = a.travel + b.travel + leg;
+  s.first = a.first;
+  s.last = b.last;
+  s.empty = false;
+  return s;
+}
+
+void Scheduler::pieces(const ScheduleProblem& p) {
   const std::size_t m = route_.size();
-  const RouteCost current = cost(p, {route_.begin(), route_.end()});
-  // The route's own timing, for moves on a route that is late somewhere: a move changes the
-  // starts from its first moved position on, and only until they fall back onto the old ones.
-  std::array<double, kMaxStops + 2> old_start{}, old_late{};
-  if (!current.feasible) {
-    std::uint8_t prev = 0;
-    for (std::size_t k = 1; k <= m; ++k) {
-      const std::uint8_t u = route_[k - 1];
-      old_start[k] = std::max(p.ready[u], old_start[k - 1] + p.travel[prev][u]);
-      old_late[k] = p.weight[u] * std::max(0.0, old_start[k] - p.due[u]);
-      prev = u;
-    }
-    work_ += m;
-  }
-  for (std::size_t len = 1; len <= 3 && len < m; ++len) {
-    for (std::size_t from = 0; from + len <= m; ++from) {
-      if (work_ >= config_.work_budget) return false;  // out of time: this pass ends here
-      // The route without the segment.
-      candidate_.clear();
-      for (std::size_t i = 0; i < m; ++i) {
-        if (i < from || i >= from + len) (void)candidate_.push_back(route_[i]);
-      }
-      const std::span<const std::uint8_t> seg(route_.begin() + static_cast<std::ptrdiff_t>(from),
-                                              len);
-      const std::size_t r = candidate_.size();
-      work_ += r + 1;
-      const bool fast = current.feasible && timing(p, {candidate_.begin(), candidate_.end()},
-                                                   start_.data(), slack_.data());
-      const std::uint8_t before = from == 0 ? 0 : route_[from - 1];
-      const std::uint8_t after = from + len < m ? route_[from + len] : 0;
-      double internal = 0.0;
-      for (std::size_t i = 1; i < len; ++i)
-        internal += p.travel[seg[i - 1]][seg[i]];
-      double removal = -(p.travel[before][seg[0]] + internal);
-      if (from + len < m) {
-        removal += p.travel[before][after] - p.travel[seg[len - 1]][after];
-      } else if (p.closed) {
-        removal += p.travel[before][0] - p.travel[seg[len - 1]][0];
-      }
-      for (std::size_t q = 0; q <= r; ++q) {
-        if (q == from) continue;  // its own place
-        // A late route is repaired by moving stops a short way; the long moves were most of the
-        // work there (measured on the Dumas n = 60 set: 8 -> 11 of 25 feasible in one step).
-        if (!current.feasible && (q > from + kRepairReach || from > q + kRepairReach)) continue;
+  Piece start = stop(p, 0);
+  start.early = start.late = 0.0;  // the route leaves node 0 now
+  prefix_[0] = start;
+  for (std::size_t k = 0; k < m; ++k)
+    prefix_[k + 1] = join(p, prefix_[k], stop(p, route_[k]));
+  suffix_[m] = p.closed ? stop(p, 0) : Piece{};
+  for (std::size_t k = m; k-- > 0;)
+    suffix_[k] = join(p, stop(p, route_[k]), suffix_[k + 1]);
+  work_ += 6 * m;
+}
+
+// A move is taken if it lowers the time warp, or keeps it and shortens the route. On a route
+// that is on time, a move's travel is known from its legs alone, and only a shorter route needs
+// its timing checked. Time warp only grows as pieces are joined, so a piece already over the
+// route's warp ends a scan. Work: a unit per candidate, 3 per join.
+bool Scheduler::or_opt_on_time(const ScheduleProblem& p) {
+  const std::size_t m = route_.size();
+  pieces(p);
+  const Piece now = join(p, prefix_[0], suffix_[0]);
+  const bool late = now.warp > kEps;
+  // The node after position k (-1: nothing, on an open route's end).
+  const auto next = [&](std::size_t k) { return k < m ? int{route_[k]} : (p.closed ? 0 : -1); };
+  const auto leg = [&](int a, int b) { return b < 0 ? 0.0 : p.travel[a][b]; };
+  const auto improves = [&](const Piece& all) {
+    return all.warp < now.warp - kEps ||
+           (all.warp <= now.warp + kEps && all.travel < now.travel - kGain);
+  };
+  // Each scan starts where the last move was found (moves nearby are the likely next ones) and
+  // looks only at stretches starting at a stop whose neighbourhood changed since it was last
+  // looked at ("don't look bits"): after a small kick, a few.
+  const auto mark = [&](std::size_t pos) {
+    if (pos < m) look_[route_[pos]] = true;
+  };
+  for (std::size_t k = 0; k < m; ++k) {
+    const std::size_t from = (scan_ + k) % m;
+    if (!look_[route_[from]]) continue;
+    for (std::size_t len = 1; len <= 3 && len < m && from + len <= m; ++len) {
+      if (work_ >= config_.work_budget) return false;
+      Piece seg;
+      for (std::size_t i = from; i < from + len; ++i)
+        seg = join(p, seg, stop(p, route_[i]));
+      work_ += 3 * len;
+      const int s0 = route_[from], s1 = route_[from + len - 1];
+      const int before = from == 0 ? 0 : route_[from - 1], after = next(from + len);
+      const double out = leg(before, after) - p.travel[before][s0] - leg(s1, after);
+      // Later: before | the stops after the segment up to `to` | segment | the rest.
+      // A late route is repaired by moving stops a short way (see kRepairReach).
+      const std::size_t reach = late ? kRepairReach : m;
+      // The pieces grow lazily: only a candidate worth checking pays for its joins.
+      Piece head = prefix_[from];
+      std::size_t head_end = from + len;  // head = route up to here, without the segment
+      for (std::size_t to = from + len; to < m && to < from + len + reach; ++to) {
         ++work_;
-        const std::uint8_t a0 = q == 0 ? 0 : candidate_[q - 1];
-        double delta = removal + internal + p.travel[a0][seg[0]];
-        if (q < r) {
-          const std::uint8_t b = candidate_[q];
-          delta += p.travel[seg[len - 1]][b] - p.travel[a0][b];
-        } else if (p.closed) {
-          delta += p.travel[seg[len - 1]][0] - p.travel[a0][0];
+        const int t = route_[to], u = next(to + 1);
+        const double delta = out + p.travel[t][s0] + leg(s1, u) - leg(t, u);
+        if (!late && delta >= -kGain) continue;
+        for (; head_end <= to; ++head_end, work_ += 3)
+          head = join(p, head, stop(p, route_[head_end]));
+        if (head.warp > now.warp + kEps) break;
+        work_ += 6;
+        if (improves(join(p, join(p, head, seg), suffix_[to + 1]))) {
+          for (const std::size_t pos : {from - 1, from, from + len, to, to + 1})
+            mark(pos);
+          std::rotate(route_.begin() + static_cast<std::ptrdiff_t>(from),
+                      route_.begin() + static_cast<std::ptrdiff_t>(from + len),
+                      route_.begin() + static_cast<std::ptrdiff_t>(to) + 1);
+          scan_ = from;
+          return true;
         }
-        if (fast) {
-          // O(1): start times through the segment, then the push on the rest of the route.
-          std::uint8_t a = a0;
-          double s = start_[q];
-          bool ok = true;
-          for (const std::uint8_t u : seg) {
-            s = std::max(p.ready[u], s + p.travel[a][u]);
-            ok = ok && s <= p.due[u] + kEps;
-            a = u;
-          }
-          if (!ok) continue;
-          if (q < r) {
-            const std::uint8_t b = candidate_[q];
-            if (std::max(p.ready[b], s + p.travel[a][b]) - start_[q + 1] > slack_[q + 1] + kEps)
-              continue;
-          } else if (p.closed) {
-            if (s + p.travel[a][0] > p.due[0] + kEps) continue;
-          }
-          if (delta >= -1e-7) continue;
-        } else if (!current.feasible) {
-          // Lateness of the moved route from its first changed position until its starts meet
-          // the old ones again (from there on nothing changes).
-          const std::size_t lo = std::min(from, q);
-          const std::size_t hi = std::max(from, q) + len - 1;
-          const auto node_at = [&](std::size_t i) {
-            if (i < q) return candidate_[i];
-            if (i < q + len) return seg[i - q];
-            return candidate_[i - len];
-          };
-          double t = old_start[lo];
-          std::uint8_t prev = lo == 0 ? 0 : route_[lo - 1];
-          double late = 0.0;
-          std::size_t i = lo;
-          for (; i < m; ++i) {
-            const std::uint8_t u = node_at(i);
-            t = std::max(p.ready[u], t + p.travel[prev][u]);
-            late += p.weight[u] * std::max(0.0, t - p.due[u]) - old_late[i + 1];
-            prev = u;
-            if (i > hi && std::abs(t - old_start[i + 1]) <= kEps) break;
-          }
-          work_ += i - lo + 1;
-          if (i == m && p.closed) {
-            const double old_home = old_start[m] + p.travel[route_[m - 1]][0];
-            late += p.weight[0] * (std::max(0.0, t + p.travel[prev][0] - p.due[0]) -
-                                   std::max(0.0, old_home - p.due[0]));
-          }
-          const RouteCost moved_cost{current.lateness_s + late, current.travel_s + delta, 0.0,
-                                     false};
-          if (!better(moved_cost, current)) continue;
-        }
-        StaticVector<std::uint8_t, kMaxStops> moved;
-        for (std::size_t i = 0; i <= r; ++i) {
-          if (i == q) {
-            for (const std::uint8_t u : seg)
-              (void)moved.push_back(u);
-          }
-          if (i < r) (void)moved.push_back(candidate_[i]);
-        }
-        if (better(cost(p, {moved.begin(), moved.end()}), current)) {
-          route_ = moved;
+      }
+      // Earlier: before `to` | segment | the stops from `to` up to the segment | the rest.
+      Piece mid;
+      std::size_t mid_begin = from;  // mid = the route from here up to the segment
+      for (std::size_t to = from; to-- > 0 && to + reach >= from;) {
+        ++work_;
+        const int t = route_[to], b = to == 0 ? 0 : route_[to - 1];
+        const double delta = out + p.travel[b][s0] + p.travel[s1][t] - p.travel[b][t];
+        if (!late && delta >= -kGain) continue;
+        for (; mid_begin > to; work_ += 3)
+          mid = join(p, stop(p, route_[--mid_begin]), mid);
+        if (mid.warp > now.warp + kEps) break;
+        work_ += 9;
+        if (improves(join(p, join(p, join(p, prefix_[to], seg), mid), suffix_[from + len]))) {
+          for (const std::size_t pos : {to - 1, to, from - 1, from, from + len})
+            mark(pos);
+          std::rotate(route_.begin() + static_cast<std::ptrdiff_t>(to),
+                      route_.begin() + static_cast<std::ptrdiff_t>(from),
+                      route_.begin() + static_cast<std::ptrdiff_t>(from + len));
+          scan_ = to;
           return true;
         }
       }
     }
+    look_[route_[from]] = false;  // nothing to gain here until a neighbour moves
   }
   return false;
 }
 
-// 2-opt: reverse a stretch of the route; applies the first improving reversal.
-bool Scheduler::two_opt(const ScheduleProblem& p) {
+bool Scheduler::two_opt_on_time(const ScheduleProblem& p) {
   const std::size_t m = route_.size();
-  const RouteCost current = cost(p, {route_.begin(), route_.end()});
+  pieces(p);
+  const Piece now = join(p, prefix_[0], suffix_[0]);
+  const bool late = now.warp > kEps;
   for (std::size_t i = 0; i + 1 < m && work_ < config_.work_budget; ++i) {
+    Piece reversed = stop(p, route_[i]);
+    std::size_t reversed_end = i + 1;  // reversed = the route from i up to here, backwards
+    const int a = i == 0 ? 0 : route_[i - 1];
+    double forward = 0.0, backward = 0.0;  // the stretch's inner legs, each way
     for (std::size_t j = i + 1; j < m; ++j) {
-      candidate_ = route_;
-      std::reverse(candidate_.begin() + static_cast<std::ptrdiff_t>(i),
-                   candidate_.begin() + static_cast<std::ptrdiff_t>(j) + 1);
-      if (better(cost(p, {candidate_.begin(), candidate_.end()}), current)) {
-        route_ = candidate_;
+      ++work_;
+      forward += p.travel[route_[j - 1]][route_[j]];
+      backward += p.travel[route_[j]][route_[j - 1]];
+      const int b = j + 1 < m ? int{route_[j + 1]} : (p.closed ? 0 : -1);
+      const double delta = p.travel[a][route_[j]] - p.travel[a][route_[i]] + backward - forward +
+                           (b < 0 ? 0.0 : p.travel[route_[i]][b] - p.travel[route_[j]][b]);
+      if (!late && delta >= -kGain) continue;
+      for (; reversed_end <= j; ++reversed_end, work_ += 3)
+        reversed = join(p, stop(p, route_[reversed_end]), reversed);
+      if (reversed.warp > now.warp + kEps) break;  // a longer reversal only adds to it
+      work_ += 6;
+      const Piece all = join(p, join(p, prefix_[i], reversed), suffix_[j + 1]);
+      if (all.warp < now.warp - kEps ||
+          (all.warp <= now.warp + kEps && all.travel < now.travel - kGain)) {
+        std::reverse(route_.begin() + static_cast<std::ptrdiff_t>(i),
+                     route_.begin() + static_cast<std::ptrdiff_t>(j) + 1);
         return true;
       }
     }
@@ -499,8 +529,96 @@ bool Scheduler::two_opt(const ScheduleProblem& p) {
   return false;
 }
 
-void Scheduler::local_search(const ScheduleProblem& p) {
-  while (work_ < config_.work_budget && (or_opt(p) || two_opt(p))) {
+// --- moves on a route that is late: on its real objective ---------------------------------
+
+// Or-opt on (lateness, travel): moves a stretch of 1-3 stops at most kRepairReach positions.
+// A move changes the starts from its first moved position on, and only until they fall back
+// onto the old ones: only that part is walked.
+bool Scheduler::or_opt_late(const ScheduleProblem& p) {
+  const std::size_t m = route_.size();
+  const RouteCost current = cost(p, {route_.begin(), route_.end()});
+  std::array<double, kMaxStops + 2> old_start{}, old_late{};
+  std::uint8_t last = 0;
+  for (std::size_t k = 1; k <= m; ++k) {
+    const std::uint8_t u = route_[k - 1];
+    old_start[k] = std::max(p.ready[u], old_start[k - 1] + p.travel[last][u]);
+    old_late[k] = p.weight[u] * std::max(0.0, old_start[k] - p.due[u]);
+    last = u;
+  }
+  const auto next = [&](std::size_t k) { return k < m ? int{route_[k]} : (p.closed ? 0 : -1); };
+  const auto leg = [&](int a, int b) { return b < 0 ? 0.0 : p.travel[a][b]; };
+  for (std::size_t len = 1; len <= 3 && len < m; ++len) {
+    for (std::size_t from = 0; from + len <= m; ++from) {
+      if (work_ >= config_.work_budget) return false;
+      const int s0 = route_[from], s1 = route_[from + len - 1];
+      const int before = from == 0 ? 0 : route_[from - 1], after = next(from + len);
+      const double out = leg(before, after) - p.travel[before][s0] - leg(s1, after);
+      const std::size_t lo_to = from > kRepairReach ? from - kRepairReach : 0;
+      const std::size_t hi_to = std::min(m - len, from + kRepairReach);
+      for (std::size_t to = lo_to; to <= hi_to; ++to) {  // the segment's new first position
+        if (to == from) continue;
+        // The moved route, position by position, and its travel from the changed legs.
+        const auto node_at = [&](std::size_t i) -> std::uint8_t {
+          if (i < to || i >= to + len) {
+            const std::size_t j = i < std::min(from, to) || i >= std::max(from, to) + len ? i
+                                  : to < from                                             ? i - len
+                                                                                          : i + len;
+            return route_[j];
+          }
+          return route_[from + (i - to)];
+        };
+        double delta = out;
+        if (to > from) {
+          const int t = route_[to + len - 1], u = next(to + len);
+          delta += p.travel[t][s0] + leg(s1, u) - leg(t, u);
+        } else {
+          const int t = route_[to], b = to == 0 ? 0 : route_[to - 1];
+          delta += p.travel[b][s0] + p.travel[s1][t] - p.travel[b][t];
+        }
+        const std::size_t lo = std::min(from, to), hi = std::max(from, to) + len - 1;
+        double t = old_start[lo];
+        int prev = lo == 0 ? 0 : route_[lo - 1];
+        double late = 0.0;
+        std::size_t i = lo;
+        for (; i < m; ++i) {
+          const std::uint8_t u = node_at(i);
+          t = std::max(p.ready[u], t + p.travel[prev][u]);
+          late += p.weight[u] * std::max(0.0, t - p.due[u]) - old_late[i + 1];
+          prev = u;
+          if (i > hi && std::abs(t - old_start[i + 1]) <= kEps) break;
+        }
+        work_ += i - lo + 2;
+        if (i == m && p.closed) {
+          const double old_home = old_start[m] + p.travel[route_[m - 1]][0];
+          late += p.weight[0] * (std::max(0.0, t + p.travel[prev][0] - p.due[0]) -
+                                 std::max(0.0, old_home - p.due[0]));
+        }
+        if (!better({current.lateness_s + late, current.travel_s + delta, 0.0, false}, current))
+          continue;
+        if (to < from) {
+          std::rotate(route_.begin() + static_cast<std::ptrdiff_t>(to),
+                      route_.begin() + static_cast<std::ptrdiff_t>(from),
+                      route_.begin() + static_cast<std::ptrdiff_t>(from + len));
+        } else {
+          std::rotate(route_.begin() + static_cast<std::ptrdiff_t>(from),
+                      route_.begin() + static_cast<std::ptrdiff_t>(from + len),
+                      route_.begin() + static_cast<std::ptrdiff_t>(to + len));
+        }
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+void Scheduler::local_search(const ScheduleProblem& p, bool everywhere) {
+  if (everywhere) look_.fill(true);
+  while (work_ < config_.work_budget && (or_opt_on_time(p) || two_opt_on_time(p))) {
+  }
+}
+
+void Scheduler::reduce_lateness(const ScheduleProblem& p) {
+  while (work_ < config_.work_budget && or_opt_late(p)) {
   }
 }
 
@@ -509,20 +627,36 @@ void Scheduler::solve_heuristic(const ScheduleProblem& p, bool iterate,
   StaticVector<std::uint8_t, kMaxStops> order;
   for (int k = 1; k <= p.n; ++k)
     (void)order.push_back(static_cast<std::uint8_t>(k));
+  // Two incumbents: the best route by the objective (lateness, travel), which is returned, and
+  // the one the search goes on from, best by (time warp, travel): lateness alone can hide the
+  // way to a route on time (a route may be less late in total and yet further from on time).
+  double search_warp = kInf, search_travel = kInf;
   const auto keep_if_better = [&](RouteCost& best_cost) {
     const RouteCost c = cost(p, {route_.begin(), route_.end()});
+    pieces(p);
+    const double warp = join(p, prefix_[route_.size()], suffix_[route_.size()]).warp;
+    bool progress = false;
+    if (warp < search_warp - kEps ||
+        (warp <= search_warp + kEps && c.travel_s < search_travel - kGain)) {
+      search_ = route_;
+      search_warp = warp;
+      search_travel = c.travel_s;
+      progress = true;
+    }
     if (best_.empty() || better(c, best_cost)) {
       best_ = route_;
       best_cost = c;
-      return true;
+      progress = true;
     }
-    return false;
+    return progress;
   };
   RouteCost best_cost{};
   best_.clear();
+  search_.clear();
   std::sort(order.begin(), order.end(), [&](std::uint8_t a, std::uint8_t b) {
     return p.due[a] != p.due[b] ? p.due[a] < p.due[b] : a < b;
   });
+  bool resumed = false;  // the search resumes the last solve's
   if (!warm.empty()) {
     // The last plan: its live stops in its order, then the new ones inserted by deadline, each
     // where it costs least (an urgent new request goes to the front at once if it must).
@@ -540,21 +674,36 @@ void Scheduler::solve_heuristic(const ScheduleProblem& p, bool iterate,
     }
     const StaticVector<std::uint8_t, kMaxStops> missing = candidate_;
     insertion(p, {missing.begin(), missing.end()});
-    local_search(p);
+    keep_if_better(best_cost);  // the search below may trade lateness for time warp
+    // The plan this scheduler returned last time: its search goes on from where it was (the
+    // route it was searching from need not be the plan, when no route is on time).
+    resumed = std::equal(warm.begin(), warm.end(), last_order_.begin(), last_order_.end()) &&
+              last_search_.size() == static_cast<std::size_t>(p.n);
+    if (resumed) route_ = last_search_;
+    local_search(p, true);
     keep_if_better(best_cost);
   } else {
     rng_ = Rng(config_.seed + static_cast<std::uint64_t>(p.n));
   }
-  // Constructions (a warm plan that meets every deadline needs none, and a warm step builds
-  // them only with work left): insertion by deadline, then by distance from the UAV.
-  const bool construct = warm.empty() || (!best_cost.feasible && work_ < config_.work_budget);
+  // Constructions: insertion by deadline, then by distance from the UAV. A warm start builds
+  // them only when its plan is late and new (a resumed search has built them already).
+  const bool construct =
+      warm.empty() || (!best_cost.feasible && !resumed && work_ < config_.work_budget);
   if (construct) {
     route_.clear();
     insertion(p, {order.begin(), order.end()});
-    local_search(p);
+    local_search(p, true);
     keep_if_better(best_cost);
   }
+  // No route on time: the best one descends on its real objective, its lateness.
+  const auto polish = [&](RouteCost& best) {
+    if (best.feasible) return;
+    route_ = best_;
+    reduce_lateness(p);
+    keep_if_better(best);
+  };
   if (!iterate) {
+    polish(best_cost);
     finish(p, {best_.begin(), best_.end()}, out);
     out.exact = false;
     return;
@@ -565,40 +714,48 @@ void Scheduler::solve_heuristic(const ScheduleProblem& p, bool iterate,
     });
     route_.clear();
     insertion(p, {order.begin(), order.end()});
-    local_search(p);
+    local_search(p, true);
     keep_if_better(best_cost);
   }
-  // Iterated local search: perturb the best route (move a random stretch to a random place,
-  // reverse another), descend again, keep improvements. Seeded: the same problem, the same
-  // answer; a warm start continues the last solve's sequence instead of repeating it.
+  // Iterated local search: perturb the search's route (move a few short stretches a short way:
+  // on routes with time windows a long move or a reversal is almost never on time), descend
+  // again, keep improvements. Seeded: the same problem, the same answer; a warm start continues
+  // the last solve's sequence instead of repeating it.
   Rng& rng = rng_;
   const std::size_t m = best_.size();
   const int patience = config_.stagnation_per_stop * p.n;
-  for (int idle = 0; m >= 4 && work_ < config_.work_budget && idle < patience; ++idle) {
-    route_ = best_;
-    const std::size_t len = 1 + rng.below(std::min<std::size_t>(3, m - 1));
-    const std::size_t from = rng.below(m - len + 1);
-    candidate_.clear();
-    for (std::size_t i = 0; i < m; ++i) {
-      if (i < from || i >= from + len) (void)candidate_.push_back(route_[i]);
+  const auto at = [&](std::size_t i) { return route_.begin() + static_cast<std::ptrdiff_t>(i); };
+  // A quarter of the budget is kept for the lateness polish while no route is on time.
+  const auto searching = [&] {
+    return work_ < (best_cost.feasible ? config_.work_budget
+                                       : config_.work_budget - config_.work_budget / 4);
+  };
+  for (int idle = 0; m >= 4 && searching() && idle < patience; ++idle) {
+    route_ = search_;
+    look_.fill(false);
+    const auto mark = [&](std::size_t pos) {
+      if (pos < m) look_[route_[pos]] = true;
+    };
+    const std::size_t moves = 1 + rng.below(kPerturbMoves);
+    for (std::size_t k = 0; k < moves; ++k) {
+      const std::size_t len = 1 + rng.below(std::min<std::size_t>(3, m - 1));
+      const std::size_t from = rng.below(m - len + 1);
+      const std::size_t lo = from > kPerturbReach ? from - kPerturbReach : 0;
+      const std::size_t to = lo + rng.below(std::min(m - len, from + kPerturbReach) - lo + 1);
+      for (const std::size_t pos : {from - 1, from, from + len, to - 1, to, to + len})
+        mark(pos);
+      if (to < from) std::rotate(at(to), at(from), at(from + len));
+      if (to > from) std::rotate(at(from), at(from + len), at(to + len));
+      for (const std::size_t pos : {from - 1, from, from + len, to - 1, to, to + len})
+        mark(pos);
     }
-    const std::size_t to = rng.below(candidate_.size() + 1);
-    route_.clear();
-    for (std::size_t i = 0; i <= candidate_.size(); ++i) {
-      if (i == to) {
-        for (std::size_t k = from; k < from + len; ++k)
-          (void)route_.push_back(best_[k]);
-      }
-      if (i < candidate_.size()) (void)route_.push_back(candidate_[i]);
-    }
-    const std::size_t a = rng.below(m - 1), b = a + 1 + rng.below(m - a - 1);
-    std::reverse(route_.begin() + static_cast<std::ptrdiff_t>(a),
-                 route_.begin() + static_cast<std::ptrdiff_t>(b) + 1);
-    local_search(p);
+    local_search(p, false);
     if (keep_if_better(best_cost)) idle = -1;
   }
+  polish(best_cost);
   finish(p, {best_.begin(), best_.end()}, out);
   out.exact = false;
+  last_search_ = search_;
 }
 
 }  // namespace colag::uav

@@ -13,8 +13,8 @@
 //   prunes every late state and usually settles it;
 // - heuristic, any n <= kMaxStops: deadline-ordered feasible insertion with O(1) forward
 //   time-slack checks (Savelsbergh), then local search (Or-opt relocation of 1-3 stops with
-//   the same O(1) checks, 2-opt reversal) iterated from seeded perturbations within a fixed
-//   work budget.
+//   O(1) checks on time warp, 2-opt reversal) iterated from seeded perturbations within a fixed
+//   work budget; a route that cannot be on time is then polished on its lateness.
 // Anytime: given the last plan (`warm`), the heuristic starts from it (stops it does not hold
 // inserted, stops no longer live dropped) and continues its search where the last step left
 // it, so the plan improves across steps within each step's budget.
@@ -119,9 +119,16 @@ class Scheduler {
                        ScheduleResult& out);
   // Inserts `stops` one by one into route_, each where it costs least.
   void insertion(const ScheduleProblem& p, std::span<const std::uint8_t> stops);
-  bool or_opt(const ScheduleProblem& p);   // applies one improving move, if any
-  bool two_opt(const ScheduleProblem& p);  // applies one improving move, if any
-  void local_search(const ScheduleProblem& p);
+  // Moves on (time warp, travel), each checked in O(1) by joining precomputed pieces of the
+  // route (Vidal et al. 2013's concatenation of subsequences); each applies one improving move.
+  bool or_opt_on_time(const ScheduleProblem& p);
+  bool two_opt_on_time(const ScheduleProblem& p);
+  void pieces(const ScheduleProblem& p);  // prefix_ and suffix_ of route_
+  // Or-opt on the real objective (lateness, travel), for a route that cannot be on time.
+  bool or_opt_late(const ScheduleProblem& p);
+  void reduce_lateness(const ScheduleProblem& p);
+  // Descends on (time warp, travel); `everywhere`: every stop looked at, else those marked.
+  void local_search(const ScheduleProblem& p, bool everywhere);
   RouteCost cost(const ScheduleProblem& p, std::span<const std::uint8_t> order);  // counts work
   bool better(const RouteCost& a, const RouteCost& b) const;
   void finish(const ScheduleProblem& p, std::span<const std::uint8_t> order,
@@ -134,10 +141,24 @@ class Scheduler {
   std::array<std::uint32_t, kStates> state_begin_;
   std::array<std::uint8_t, kStates> state_count_;
   // heuristic scratch
-  StaticVector<std::uint8_t, kMaxStops> route_, candidate_, best_;
+  StaticVector<std::uint8_t, kMaxStops> route_, candidate_, best_, search_;
+  // The last solve's plan and the route its search went on from (warm starts resume from it).
+  StaticVector<std::uint8_t, kMaxStops> last_order_, last_search_;
   std::uint64_t work_ = 0;
   std::array<double, kMaxStops + 2> start_{}, slack_{};
-  Rng rng_{0};  // reseeded by a cold solve, continued by warm ones
+  // A stretch of stops flown in order: its duration, its earliest and latest feasible start,
+  // the lateness it cannot avoid ("time warp": 0 when it can meet every deadline), its travel.
+  struct Piece {
+    double duration = 0, early = 0, late = 0, warp = 0, travel = 0;
+    std::uint8_t first = 0, last = 0;
+    bool empty = true;
+  };
+  static Piece join(const ScheduleProblem& p, const Piece& a, const Piece& b);
+  static Piece stop(const ScheduleProblem& p, std::uint8_t u);
+  std::array<Piece, kMaxStops + 2> prefix_{}, suffix_{};
+  std::size_t scan_ = 0;                    // where the next Or-opt scan starts
+  std::array<bool, kMaxStops + 1> look_{};  // per stop: its stretches are worth a look
+  Rng rng_{0};                              // reseeded by a cold solve, continued by warm ones
   std::uint32_t age_steps_ = 0;
 };
 
