@@ -107,6 +107,7 @@ int run_scheduler_bench(const SchedulerBenchOptions& o) {
   uav::SchedulerConfig cfg;
   if (o.exact_max >= 0) cfg.exact_max_stops = o.exact_max;
   if (o.work > 0) cfg.work_budget = o.work;
+  if (o.seed > 0) cfg.seed = o.seed;
   std::error_code ec;
   std::vector<std::string> files;
   const bool dir = fs::is_directory(o.instance, ec);

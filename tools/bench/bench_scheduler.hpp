@@ -20,6 +20,7 @@ struct SchedulerBenchOptions {
   int exact_max = -1;            // -1: the scheduler's default
   std::uint64_t work = 0;        // work budget per step (0: the scheduler's default)
   int steps = 1;                 // anytime: solves of the same problem, each warm-started
+  std::uint64_t seed = 0;        // of the search's kicks (0: the firmware's)
   std::string best_known;        // CSV (default: best_known.csv beside the instances)
   int reference_runs = 0;        // open/deadline: long runs that give the reference (0: none)
   std::string reference_out;     // writes each instance's reference there (CSV)

@@ -43,6 +43,7 @@ int run(int argc, char** argv) {
       ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 40));
   sched->add_option("--steps", hopt.steps, "solves of each instance, each warm-started (anytime)")
       ->check(CLI::Range(1, 10000));
+  sched->add_option("--seed", hopt.seed, "seed of the search's kicks (default: the firmware's)");
   sched->add_option("--best-known", hopt.best_known,
                     "CSV of published values (default: best_known.csv beside the instances)");
   sched

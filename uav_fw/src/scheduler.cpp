@@ -14,7 +14,8 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kGain = 1e-7;             // a move must shorten the route by more than this
 constexpr std::size_t kRepairReach = 10;   // positions a stop moves on a route that is late
 constexpr std::size_t kPerturbMoves = 3;   // the search's kick: up to 3 stretches moved,
-constexpr std::size_t kPerturbReach = 15;  // each up to 15 positions
+constexpr std::size_t kPerturbReach = 15;  // each up to 15 positions,
+constexpr std::uint64_t kGlobalKick = 4;   // or anywhere, one kick in 4
 }  // namespace
 
 RouteCost evaluate(const ScheduleProblem& p, std::span<const std::uint8_t> order, double* arrival) {
@@ -631,10 +632,13 @@ void Scheduler::solve_heuristic(const ScheduleProblem& p, bool iterate,
   // the one the search goes on from, best by (time warp, travel): lateness alone can hide the
   // way to a route on time (a route may be less late in total and yet further from on time).
   double search_warp = kInf, search_travel = kInf;
+  double route_warp = 0.0, route_travel = 0.0;  // route_'s, as keep_if_better saw it
   const auto keep_if_better = [&](RouteCost& best_cost) {
     const RouteCost c = cost(p, {route_.begin(), route_.end()});
     pieces(p);
     const double warp = join(p, prefix_[route_.size()], suffix_[route_.size()]).warp;
+    route_warp = warp;
+    route_travel = c.travel_s;
     bool progress = false;
     if (warp < search_warp - kEps ||
         (warp <= search_warp + kEps && c.travel_s < search_travel - kGain)) {
@@ -717,31 +721,59 @@ void Scheduler::solve_heuristic(const ScheduleProblem& p, bool iterate,
     local_search(p, true);
     keep_if_better(best_cost);
   }
-  // Iterated local search: perturb the search's route (move a few short stretches a short way:
-  // on routes with time windows a long move or a reversal is almost never on time), descend
-  // again, keep improvements. Seeded: the same problem, the same answer; a warm start continues
-  // the last solve's sequence instead of repeating it.
+  // Iterated local search: kick the search's route (move 1-3 short stretches, mostly a short
+  // way: on routes with time windows a long move or a reversal is seldom on time), descend
+  // again, keep improvements. After `patience` kicks without progress a cold solve ends; a warm
+  // one (counting across steps) restarts from a new construction, by deadline with noise: some
+  // problems have far apart basins that small kicks never cross. Seeded: the same problem, the same
+  // answer; a warm start continues the last solve's sequence instead of repeating it.
   Rng& rng = rng_;
   const std::size_t m = best_.size();
-  const int patience = config_.stagnation_per_stop * p.n;
+  const int patience = std::max(1, config_.stagnation_per_stop * p.n);
   const auto at = [&](std::size_t i) { return route_.begin() + static_cast<std::ptrdiff_t>(i); };
+  const auto mark = [&](std::size_t pos) {
+    if (pos < m) look_[route_[pos]] = true;
+  };
   // A quarter of the budget is kept for the lateness polish while no route is on time.
   const auto searching = [&] {
     return work_ < (best_cost.feasible ? config_.work_budget
                                        : config_.work_budget - config_.work_budget / 4);
   };
-  for (int idle = 0; m >= 4 && searching() && idle < patience; ++idle) {
+  if (warm.empty()) idle_ = 0;
+  while (m >= 4 && searching()) {
+    if (idle_ >= patience && warm.empty()) break;  // a cold solve ends: its answer is due now
+    if (idle_ >= patience) {
+      idle_ = 0;
+      double first = kInf, last = -kInf;
+      for (const std::uint8_t k : order) {
+        first = std::min(first, p.due[k]);
+        last = std::max(last, p.due[k]);
+      }
+      const double spread = last - first;
+      const double noise = rng.uniform(0.05, 0.5) * (std::isfinite(spread) ? spread : 0.0);
+      for (std::size_t k = 0; k < m; ++k)
+        key_[order[k]] = p.due[order[k]] + rng.uniform(0.0, noise);
+      std::sort(order.begin(), order.end(), [&](std::uint8_t a, std::uint8_t b) {
+        return key_[a] != key_[b] ? key_[a] < key_[b] : a < b;
+      });
+      route_.clear();
+      insertion(p, {order.begin(), order.end()});
+      local_search(p, true);
+      keep_if_better(best_cost);
+      search_ = route_;  // the search goes on from here, better or not
+      search_warp = route_warp;
+      search_travel = route_travel;
+      continue;
+    }
     route_ = search_;
     look_.fill(false);
-    const auto mark = [&](std::size_t pos) {
-      if (pos < m) look_[route_[pos]] = true;
-    };
+    const std::size_t reach = rng.below(kGlobalKick) == 0 ? m : kPerturbReach;
     const std::size_t moves = 1 + rng.below(kPerturbMoves);
     for (std::size_t k = 0; k < moves; ++k) {
       const std::size_t len = 1 + rng.below(std::min<std::size_t>(3, m - 1));
       const std::size_t from = rng.below(m - len + 1);
-      const std::size_t lo = from > kPerturbReach ? from - kPerturbReach : 0;
-      const std::size_t to = lo + rng.below(std::min(m - len, from + kPerturbReach) - lo + 1);
+      const std::size_t lo = from > reach ? from - reach : 0;
+      const std::size_t to = lo + rng.below(std::min(m - len, from + reach) - lo + 1);
       for (const std::size_t pos : {from - 1, from, from + len, to - 1, to, to + len})
         mark(pos);
       if (to < from) std::rotate(at(to), at(from), at(from + len));
@@ -750,7 +782,7 @@ void Scheduler::solve_heuristic(const ScheduleProblem& p, bool iterate,
         mark(pos);
     }
     local_search(p, false);
-    if (keep_if_better(best_cost)) idle = -1;
+    idle_ = keep_if_better(best_cost) ? 0 : idle_ + 1;
   }
   polish(best_cost);
   finish(p, {best_.begin(), best_.end()}, out);

@@ -156,9 +156,11 @@ class Scheduler {
   static Piece join(const ScheduleProblem& p, const Piece& a, const Piece& b);
   static Piece stop(const ScheduleProblem& p, std::uint8_t u);
   std::array<Piece, kMaxStops + 2> prefix_{}, suffix_{};
-  std::size_t scan_ = 0;                    // where the next Or-opt scan starts
-  std::array<bool, kMaxStops + 1> look_{};  // per stop: its stretches are worth a look
-  Rng rng_{0};                              // reseeded by a cold solve, continued by warm ones
+  std::size_t scan_ = 0;                     // where the next Or-opt scan starts
+  std::array<bool, kMaxStops + 1> look_{};   // per stop: its stretches are worth a look
+  std::array<double, kMaxStops + 1> key_{};  // a restart's construction order
+  int idle_ = 0;                             // kicks without progress, across warm solves
+  Rng rng_{0};                               // reseeded by a cold solve, continued by warm ones
   std::uint32_t age_steps_ = 0;
 };
 
