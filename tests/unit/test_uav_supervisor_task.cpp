@@ -203,6 +203,8 @@ TEST(UavSupervisorTask, FliesTheScheduledOrderHoversUntilCancelledThenMovesOn) {
   EXPECT_LT(rig.distance_to(b), 1.0);
   EXPECT_LT(rig.sky->travelled, 1.3 * ((a - Vec2(0, 0)).norm() + (b - a).norm()));
   EXPECT_GT(rig.uav->health().schedules_exact, 0u);
+  // The order [0, 1] stood while the UAV flew to UGV 0: each step was warm-started from it.
+  EXPECT_GT(rig.uav->health().plan_age_max, 5u);
   EXPECT_EQ(rig.uav->health().requests_rejected, 0u);
 }
 

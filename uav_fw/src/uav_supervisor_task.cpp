@@ -365,6 +365,7 @@ void UavSupervisorTask::solve(TimePoint now) {
     (void)plan_ugv_.push_back(stop_ugv_[k - 1u]);
   ++health_.schedules;
   health_.schedules_exact += schedule_.exact;
+  health_.plan_age_max = std::max(health_.plan_age_max, schedule_.age_steps);
 }
 
 bool UavSupervisorTask::choose_target(TimePoint now, Vec2& target) {

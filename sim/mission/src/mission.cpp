@@ -615,6 +615,7 @@ MissionOutcome Mission::collect(MissionTrace* trace) const {
     out.map_patch_bytes = p.uav->sharer().counters().bytes;
     out.schedules = p.uav->health().schedules;
     out.schedules_exact = p.uav->health().schedules_exact;
+    out.plan_age_max = p.uav->health().plan_age_max;
     const auto mode_s = [&](uav::UavMode m) {
       return static_cast<double>(p.uav->health().mode_steps[static_cast<std::size_t>(m)]) *
              to_seconds(p.uav->config().schedule.scheduling.period);

@@ -215,6 +215,7 @@ std::string to_json(const MissionOutcome& o, bool include_wall_time) {
   j["map_patch_bytes"] = o.map_patch_bytes;
   j["schedules"] = o.schedules;
   j["schedules_exact"] = o.schedules_exact;
+  j["plan_age_max_steps"] = o.plan_age_max;
   j["uav_time_s"] = {{"idle", o.uav_idle_s},
                      {"transit", o.uav_transit_s},
                      {"hover", o.uav_hover_s},

@@ -114,6 +114,7 @@ struct UavHealth {
   std::uint64_t setpoint_errors = 0;
   std::uint64_t schedules = 0;
   std::uint64_t schedules_exact = 0;
+  std::uint32_t plan_age_max = 0;  // most scheduling steps one plan stood unchanged (warm starts)
   std::uint64_t hover_timeouts = 0;
   // Scheduling steps spent in each UavMode (idle, transit, hover, scout): where its time goes.
   std::array<std::uint64_t, static_cast<std::size_t>(UavMode::kScout) + 1> mode_steps{};

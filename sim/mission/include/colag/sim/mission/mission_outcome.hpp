@@ -106,6 +106,7 @@ struct MissionOutcome {
   std::uint64_t map_patch_bytes = 0;  // payload bytes of every patch sent
   std::uint64_t schedules = 0;
   std::uint64_t schedules_exact = 0;
+  std::uint32_t plan_age_max = 0;  // most scheduling steps one plan stood unchanged
   // The UAV's time by what it did (after its first odometry): nothing to do or leading a UGV
   // (idle), flying to a support point (transit), circling one (hover), scouting; and the
   // scouting points it left unmapped (scout_timeout).
