@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <memory>
 #include <sstream>
@@ -26,6 +27,7 @@ struct Outcome {
   bool feasible = false;
   bool exact = false;
   double reference = -1;  // < 0: none
+  bool reference_exact = false;
   double ms = 0;
   std::uint64_t work = 0;
 };
@@ -77,6 +79,39 @@ Solved solve(const uav::ScheduleProblem& p, uav::SchedulerConfig cfg, int steps)
   }
   s.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return s;
+}
+
+// The deadline variant's optimum for n <= kExactDeadlineStops, by dynamic programming over
+// subsets (Held-Karp): with no ready times nothing waits, so a path's arrival is its travel and
+// one number per (visited set, last stop) is exact. Deadlines are hard. -1: no route meets them.
+constexpr int kExactDeadlineStops = 20;  // 2^20 x 20 doubles: 168 MB, about a second
+double exact_deadline_optimum(const uav::ScheduleProblem& p) {
+  const int n = p.n;
+  const std::size_t sets = std::size_t{1} << n;
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<double> best(sets * static_cast<std::size_t>(n), inf);
+  const auto at = [&](std::size_t set, int last) {
+    return set * static_cast<std::size_t>(n) + static_cast<std::size_t>(last);
+  };
+  for (int j = 0; j < n; ++j) {
+    if (p.travel[0][j + 1] <= p.due[j + 1]) best[at(std::size_t{1} << j, j)] = p.travel[0][j + 1];
+  }
+  for (std::size_t set = 1; set < sets; ++set) {
+    for (int j = 0; j < n; ++j) {
+      const double t = best[at(set, j)];
+      if (t == inf) continue;
+      for (int k = 0; k < n; ++k) {
+        if ((set >> k) & 1U) continue;
+        const double a = t + p.travel[j + 1][k + 1];
+        double& next = best[at(set | (std::size_t{1} << k), k)];
+        if (a <= p.due[k + 1] && a < next) next = a;
+      }
+    }
+  }
+  double optimum = inf;
+  for (int j = 0; j < n; ++j)
+    optimum = std::min(optimum, best[at(sets - 1, j)]);
+  return optimum == inf ? -1.0 : optimum;
 }
 
 double gap_pct(const Outcome& o) {
@@ -174,7 +209,10 @@ int run_scheduler_bench(const SchedulerBenchOptions& o) {
     out.exact = s.result.exact;
     out.ms = s.ms;
     out.work = s.work;
-    if (const auto it = best_known.find(out.name); it != best_known.end()) {
+    if (o.exact_reference && o.variant == "deadline" && problem->n <= kExactDeadlineStops) {
+      out.reference = exact_deadline_optimum(*problem);
+      out.reference_exact = true;
+    } else if (const auto it = best_known.find(out.name); it != best_known.end()) {
       out.reference = it->second;
     } else if (o.reference_runs > 0) {
       // The best of several long runs (each 100 warm steps, seeded differently): a reference,
@@ -192,9 +230,9 @@ int run_scheduler_bench(const SchedulerBenchOptions& o) {
     outcomes.push_back(out);
     if (reference_out != nullptr && out.reference > 0)
       std::fprintf(reference_out, "Dumas,%s,%.0f\n", out.name.c_str(), out.reference);
-    std::printf("%-18s n=%-3d travel %9.1f  ref %9.1f  gap %6.2f %%  %-10s %8.2f ms  work %llu\n",
-                out.name.c_str(), out.n, out.travel, out.reference, gap_pct(out),
-                out.feasible ? "feasible" : "INFEASIBLE", out.ms,
+    std::printf("%-18s n=%-3d travel %9.1f  ref %9.1f%s gap %6.2f %%  %-10s %8.2f ms  work %llu\n",
+                out.name.c_str(), out.n, out.travel, out.reference, out.reference_exact ? "*" : " ",
+                gap_pct(out), out.feasible ? "feasible" : "INFEASIBLE", out.ms,
                 static_cast<unsigned long long>(out.work));
     std::fflush(stdout);
   }
@@ -204,7 +242,9 @@ int run_scheduler_bench(const SchedulerBenchOptions& o) {
     by_n[out.n].push_back(&out);
   std::printf("\nvariant %s, %d step(s) of %llu work each; reference: %s\n", o.variant.c_str(),
               std::max(1, o.steps), static_cast<unsigned long long>(cfg.work_budget),
-              !o.best_known.empty()   ? o.best_known.c_str()
+              o.exact_reference && o.variant == "deadline"
+                  ? "optimum by dynamic programming where n <= 20 (*), else as below"
+              : !o.best_known.empty() ? o.best_known.c_str()
               : o.variant == "closed" ? "published optimum (best_known.csv)"
                                       : "best of long runs (not proven optimal)");
   std::printf("%4s %9s %10s %9s %9s %10s %10s\n", "n", "instances", "feasible", "mean gap",

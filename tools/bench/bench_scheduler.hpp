@@ -24,6 +24,7 @@ struct SchedulerBenchOptions {
   std::string best_known;        // CSV (default: best_known.csv beside the instances)
   int reference_runs = 0;        // open/deadline: long runs that give the reference (0: none)
   std::string reference_out;     // writes each instance's reference there (CSV)
+  bool exact_reference = false;  // deadline variant, n <= 20: the optimum by dynamic programming
   double max_mean_gap_pct = -1;  // exit 1 if a size's mean gap exceeds it (< 0: no check)
   int max_stops = 1 << 30;       // a directory's instances with more stops are skipped
 };

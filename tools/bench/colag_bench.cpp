@@ -52,6 +52,8 @@ int run(int argc, char** argv) {
       ->check(CLI::Range(0, 100));
   sched->add_option("--reference-out", hopt.reference_out,
                     "write each instance's reference (best_known.csv's layout)");
+  sched->add_flag("--exact-reference", hopt.exact_reference,
+                  "deadline variant, n <= 20: measure against the optimum (dynamic programming)");
   sched->add_option("--max-stops", hopt.max_stops, "skip a directory's larger instances")
       ->check(CLI::Range(1, 1 << 30));
   sched
