@@ -724,9 +724,10 @@ void Scheduler::solve_heuristic(const ScheduleProblem& p, bool iterate,
   // Iterated local search: kick the search's route (move 1-3 short stretches, mostly a short
   // way: on routes with time windows a long move or a reversal is seldom on time), descend
   // again, keep improvements. After `patience` kicks without progress a cold solve ends; a warm
-  // one (counting across steps) restarts from a new construction, by deadline with noise: some
-  // problems have far apart basins that small kicks never cross. Seeded: the same problem, the same
-  // answer; a warm start continues the last solve's sequence instead of repeating it.
+  // one (counting across steps) restarts from a new construction, by deadline with noise (some
+  // problems have far apart basins that small kicks never cross), and ends at the next stall.
+  // Seeded: the same problem, the same answer; a warm start continues the last solve's sequence
+  // instead of repeating it.
   Rng& rng = rng_;
   const std::size_t m = best_.size();
   const int patience = std::max(1, config_.stagnation_per_stop * p.n);
@@ -740,10 +741,14 @@ void Scheduler::solve_heuristic(const ScheduleProblem& p, bool iterate,
                                        : config_.work_budget - config_.work_budget / 4);
   };
   if (warm.empty()) idle_ = 0;
+  bool restarted = false;
   while (m >= 4 && searching()) {
-    if (idle_ >= patience && warm.empty()) break;  // a cold solve ends: its answer is due now
+    // A cold solve ends here (its answer is due now); a warm one restarts once per step, so a
+    // settled plan costs a restart's work per step, not the whole budget.
+    if (idle_ >= patience && (warm.empty() || restarted)) break;
     if (idle_ >= patience) {
       idle_ = 0;
+      restarted = true;
       double first = kInf, last = -kInf;
       for (const std::uint8_t k : order) {
         first = std::min(first, p.due[k]);
