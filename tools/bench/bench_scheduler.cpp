@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <limits>
 #include <map>
 #include <memory>
@@ -175,21 +176,16 @@ int run_scheduler_bench(const SchedulerBenchOptions& o) {
                               : std::map<std::string, double>{};
   std::vector<Outcome> outcomes;
   // The references found, in best_known.csv's layout, for --best-known next time.
-  FILE* reference_out = nullptr;
+  std::ofstream reference_out;
   if (!o.reference_out.empty()) {
-    reference_out = std::fopen(o.reference_out.c_str(), "w");
-    if (reference_out == nullptr) {
+    reference_out.open(o.reference_out);
+    if (!reference_out) {
       std::fprintf(stderr, "colag_bench scheduler: cannot write %s\n", o.reference_out.c_str());
       return 2;
     }
-    std::fprintf(reference_out, "Benchmark Set,Instance Name,Best Known Solution\n");
+    reference_out << std::fixed << std::setprecision(0)
+                  << "Benchmark Set,Instance Name,Best Known Solution\n";
   }
-  struct Closer {
-    FILE*& f;
-    ~Closer() {
-      if (f != nullptr) std::fclose(f);
-    }
-  } closer{reference_out};
   auto problem = std::make_unique<uav::ScheduleProblem>();
   for (std::size_t i = 0; i < files.size(); ++i) {
     std::string error;
@@ -228,8 +224,8 @@ int run_scheduler_bench(const SchedulerBenchOptions& o) {
       if (out.feasible && out.reference > out.travel) out.reference = out.travel;
     }
     outcomes.push_back(out);
-    if (reference_out != nullptr && out.reference > 0)
-      std::fprintf(reference_out, "Dumas,%s,%.0f\n", out.name.c_str(), out.reference);
+    if (reference_out.is_open() && out.reference > 0)
+      reference_out << "Dumas," << out.name << ',' << out.reference << '\n';
     std::printf("%-18s n=%-3d travel %9.1f  ref %9.1f%s gap %6.2f %%  %-10s %8.2f ms  work %llu\n",
                 out.name.c_str(), out.n, out.travel, out.reference, out.reference_exact ? "*" : " ",
                 gap_pct(out), out.feasible ? "feasible" : "INFEASIBLE", out.ms,

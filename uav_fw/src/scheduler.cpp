@@ -366,7 +366,7 @@ void Scheduler::insertion(const ScheduleProblem& p, std::span<const std::uint8_t
   }
 }
 
-// --- moves on a route that meets every deadline ---------------------------------------------
+// --- moves on (time warp, travel) -----------------------------------------------------------
 
 Scheduler::Piece Scheduler::stop(const ScheduleProblem& p, std::uint8_t u) {
   Piece s;
@@ -396,6 +396,26 @@ Scheduler::Piece Scheduler::join(const ScheduleProblem& p, const Piece& a, const
   return s;
 }
 
+Scheduler::Piece Scheduler::whole(const ScheduleProblem& p) {
+  pieces(p);
+  return join(p, prefix_[0], suffix_[0]);
+}
+
+bool Scheduler::improves(const Piece& now, const Piece& moved) {
+  return moved.warp < now.warp - kEps ||
+         (moved.warp <= now.warp + kEps && moved.travel < now.travel - kGain);
+}
+
+int Scheduler::after(const ScheduleProblem& p, std::size_t k) const {
+  return k < route_.size() ? int{route_[k]} : (p.closed ? 0 : -1);
+}
+
+void Scheduler::move_stretch(std::size_t from, std::size_t len, std::size_t to) {
+  const auto at = [&](std::size_t i) { return route_.begin() + static_cast<std::ptrdiff_t>(i); };
+  if (to < from) std::rotate(at(to), at(from), at(from + len));
+  if (to > from) std::rotate(at(from), at(from + len), at(to + len));
+}
+
 void Scheduler::pieces(const ScheduleProblem& p) {
   const std::size_t m = route_.size();
   Piece start = stop(p, 0);
@@ -415,16 +435,10 @@ void Scheduler::pieces(const ScheduleProblem& p) {
 // route's warp ends a scan. Work: a unit per candidate, 3 per join.
 bool Scheduler::or_opt_on_time(const ScheduleProblem& p) {
   const std::size_t m = route_.size();
-  pieces(p);
-  const Piece now = join(p, prefix_[0], suffix_[0]);
+  const Piece now = whole(p);
   const bool late = now.warp > kEps;
-  // The node after position k (-1: nothing, on an open route's end).
-  const auto next = [&](std::size_t k) { return k < m ? int{route_[k]} : (p.closed ? 0 : -1); };
+  const auto next = [&](std::size_t k) { return after(p, k); };
   const auto leg = [&](int a, int b) { return b < 0 ? 0.0 : p.travel[a][b]; };
-  const auto improves = [&](const Piece& all) {
-    return all.warp < now.warp - kEps ||
-           (all.warp <= now.warp + kEps && all.travel < now.travel - kGain);
-  };
   // Each scan starts where the last move was found (moves nearby are the likely next ones) and
   // looks only at stretches starting at a stop whose neighbourhood changed since it was last
   // looked at ("don't look bits"): after a small kick, a few.
@@ -458,12 +472,10 @@ bool Scheduler::or_opt_on_time(const ScheduleProblem& p) {
           head = join(p, head, stop(p, route_[head_end]));
         if (head.warp > now.warp + kEps) break;
         work_ += 6;
-        if (improves(join(p, join(p, head, seg), suffix_[to + 1]))) {
+        if (improves(now, join(p, join(p, head, seg), suffix_[to + 1]))) {
           for (const std::size_t pos : {from - 1, from, from + len, to, to + 1})
             mark(pos);
-          std::rotate(route_.begin() + static_cast<std::ptrdiff_t>(from),
-                      route_.begin() + static_cast<std::ptrdiff_t>(from + len),
-                      route_.begin() + static_cast<std::ptrdiff_t>(to) + 1);
+          move_stretch(from, len, to + 1 - len);
           scan_ = from;
           return true;
         }
@@ -480,12 +492,10 @@ bool Scheduler::or_opt_on_time(const ScheduleProblem& p) {
           mid = join(p, stop(p, route_[--mid_begin]), mid);
         if (mid.warp > now.warp + kEps) break;
         work_ += 9;
-        if (improves(join(p, join(p, join(p, prefix_[to], seg), mid), suffix_[from + len]))) {
+        if (improves(now, join(p, join(p, join(p, prefix_[to], seg), mid), suffix_[from + len]))) {
           for (const std::size_t pos : {to - 1, to, from - 1, from, from + len})
             mark(pos);
-          std::rotate(route_.begin() + static_cast<std::ptrdiff_t>(to),
-                      route_.begin() + static_cast<std::ptrdiff_t>(from),
-                      route_.begin() + static_cast<std::ptrdiff_t>(from + len));
+          move_stretch(from, len, to);
           scan_ = to;
           return true;
         }
@@ -498,8 +508,7 @@ bool Scheduler::or_opt_on_time(const ScheduleProblem& p) {
 
 bool Scheduler::two_opt_on_time(const ScheduleProblem& p) {
   const std::size_t m = route_.size();
-  pieces(p);
-  const Piece now = join(p, prefix_[0], suffix_[0]);
+  const Piece now = whole(p);
   const bool late = now.warp > kEps;
   for (std::size_t i = 0; i + 1 < m && work_ < config_.work_budget; ++i) {
     Piece reversed = stop(p, route_[i]);
@@ -510,7 +519,7 @@ bool Scheduler::two_opt_on_time(const ScheduleProblem& p) {
       ++work_;
       forward += p.travel[route_[j - 1]][route_[j]];
       backward += p.travel[route_[j]][route_[j - 1]];
-      const int b = j + 1 < m ? int{route_[j + 1]} : (p.closed ? 0 : -1);
+      const int b = after(p, j + 1);
       const double delta = p.travel[a][route_[j]] - p.travel[a][route_[i]] + backward - forward +
                            (b < 0 ? 0.0 : p.travel[route_[i]][b] - p.travel[route_[j]][b]);
       if (!late && delta >= -kGain) continue;
@@ -518,9 +527,7 @@ bool Scheduler::two_opt_on_time(const ScheduleProblem& p) {
         reversed = join(p, stop(p, route_[reversed_end]), reversed);
       if (reversed.warp > now.warp + kEps) break;  // a longer reversal only adds to it
       work_ += 6;
-      const Piece all = join(p, join(p, prefix_[i], reversed), suffix_[j + 1]);
-      if (all.warp < now.warp - kEps ||
-          (all.warp <= now.warp + kEps && all.travel < now.travel - kGain)) {
+      if (improves(now, join(p, join(p, prefix_[i], reversed), suffix_[j + 1]))) {
         std::reverse(route_.begin() + static_cast<std::ptrdiff_t>(i),
                      route_.begin() + static_cast<std::ptrdiff_t>(j) + 1);
         return true;
@@ -546,7 +553,7 @@ bool Scheduler::or_opt_late(const ScheduleProblem& p) {
     old_late[k] = p.weight[u] * std::max(0.0, old_start[k] - p.due[u]);
     last = u;
   }
-  const auto next = [&](std::size_t k) { return k < m ? int{route_[k]} : (p.closed ? 0 : -1); };
+  const auto next = [&](std::size_t k) { return after(p, k); };
   const auto leg = [&](int a, int b) { return b < 0 ? 0.0 : p.travel[a][b]; };
   for (std::size_t len = 1; len <= 3 && len < m; ++len) {
     for (std::size_t from = 0; from + len <= m; ++from) {
@@ -596,15 +603,7 @@ bool Scheduler::or_opt_late(const ScheduleProblem& p) {
         }
         if (!better({current.lateness_s + late, current.travel_s + delta, 0.0, false}, current))
           continue;
-        if (to < from) {
-          std::rotate(route_.begin() + static_cast<std::ptrdiff_t>(to),
-                      route_.begin() + static_cast<std::ptrdiff_t>(from),
-                      route_.begin() + static_cast<std::ptrdiff_t>(from + len));
-        } else {
-          std::rotate(route_.begin() + static_cast<std::ptrdiff_t>(from),
-                      route_.begin() + static_cast<std::ptrdiff_t>(from + len),
-                      route_.begin() + static_cast<std::ptrdiff_t>(to + len));
-        }
+        move_stretch(from, len, to);
         return true;
       }
     }
@@ -635,8 +634,7 @@ void Scheduler::solve_heuristic(const ScheduleProblem& p, bool iterate,
   double route_warp = 0.0, route_travel = 0.0;  // route_'s, as keep_if_better saw it
   const auto keep_if_better = [&](RouteCost& best_cost) {
     const RouteCost c = cost(p, {route_.begin(), route_.end()});
-    pieces(p);
-    const double warp = join(p, prefix_[route_.size()], suffix_[route_.size()]).warp;
+    const double warp = whole(p).warp;
     route_warp = warp;
     route_travel = c.travel_s;
     bool progress = false;
@@ -731,7 +729,6 @@ void Scheduler::solve_heuristic(const ScheduleProblem& p, bool iterate,
   Rng& rng = rng_;
   const std::size_t m = best_.size();
   const int patience = std::max(1, config_.stagnation_per_stop * p.n);
-  const auto at = [&](std::size_t i) { return route_.begin() + static_cast<std::ptrdiff_t>(i); };
   const auto mark = [&](std::size_t pos) {
     if (pos < m) look_[route_[pos]] = true;
   };
@@ -781,8 +778,7 @@ void Scheduler::solve_heuristic(const ScheduleProblem& p, bool iterate,
       const std::size_t to = lo + rng.below(std::min(m - len, from + reach) - lo + 1);
       for (const std::size_t pos : {from - 1, from, from + len, to - 1, to, to + len})
         mark(pos);
-      if (to < from) std::rotate(at(to), at(from), at(from + len));
-      if (to > from) std::rotate(at(from), at(from + len), at(to + len));
+      move_stretch(from, len, to);
       for (const std::size_t pos : {from - 1, from, from + len, to - 1, to, to + len})
         mark(pos);
     }

@@ -155,6 +155,12 @@ class Scheduler {
   };
   static Piece join(const ScheduleProblem& p, const Piece& a, const Piece& b);
   static Piece stop(const ScheduleProblem& p, std::uint8_t u);
+  Piece whole(const ScheduleProblem& p);  // pieces(), and route_ as one piece
+  // A move is taken if it lowers the time warp, or keeps it and shortens the route.
+  static bool improves(const Piece& now, const Piece& moved);
+  int after(const ScheduleProblem& p, std::size_t k) const;  // node after position k; -1: none
+  // Moves the stretch [from, from + len) of route_ so that it starts at position `to`.
+  void move_stretch(std::size_t from, std::size_t len, std::size_t to);
   std::array<Piece, kMaxStops + 2> prefix_{}, suffix_{};
   std::size_t scan_ = 0;                     // where the next Or-opt scan starts
   std::array<bool, kMaxStops + 1> look_{};   // per stop: its stretches are worth a look
