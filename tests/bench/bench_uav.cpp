@@ -12,6 +12,7 @@
 #include "colag/common/random.hpp"
 #include "colag/platform/worker_pool.hpp"
 #include "colag/sim/world/lidar_simulator.hpp"
+#include "colag/uav/fleet_scheduler.hpp"
 #include "colag/uav/map_sharer.hpp"
 #include "colag/uav/mapper.hpp"
 #include "colag/uav/scheduler.hpp"
@@ -148,6 +149,49 @@ void BM_Scheduler(benchmark::State& state) {
       benchmark::Counter(static_cast<double>(feasible), benchmark::Counter::kAvgIterations);
 }
 BENCHMARK(BM_Scheduler)->Arg(7)->Arg(16)->Arg(64)->Unit(benchmark::kMicrosecond);
+
+// K UAVs over n stops on a 100 m site, each from its own place (a cold solve: the worst case;
+// the exact solver up to 8 stops).
+void BM_FleetScheduler(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const int vehicles = static_cast<int>(state.range(1));
+  Rng rng(43);
+  std::vector<std::unique_ptr<FleetProblem>> problems;
+  for (int k = 0; k < 8; ++k) {
+    auto p = std::make_unique<FleetProblem>();
+    p->n = n;
+    p->vehicles = vehicles;
+    std::vector<Vec2> pts(static_cast<std::size_t>(n) + 1);
+    for (auto& q : pts)
+      q = Vec2(rng.uniform(-50, 50), rng.uniform(-50, 50));
+    for (int i = 1; i <= n; ++i) {
+      for (int j = 1; j <= n; ++j)
+        p->travel[i][j] = cruise_time_s(pts[i], pts[j], {});
+      p->due[i] = rng.uniform(5.0, 10.0 * n / vehicles);
+    }
+    for (std::size_t v = 0; v < static_cast<std::size_t>(vehicles); ++v) {
+      const Vec2 at(rng.uniform(-50, 50), rng.uniform(-50, 50));
+      for (int j = 1; j <= n; ++j)
+        p->first[v][j] = first_leg_time_s(at, Vec2(1, 0), pts[j], {});
+    }
+    problems.push_back(std::move(p));
+  }
+  auto fleet = std::make_unique<FleetScheduler>();
+  std::size_t k = 0, feasible = 0;
+  for (auto _ : state) {
+    const FleetResult& r = fleet->solve(*problems[k++ % problems.size()]);
+    feasible += r.cost.feasible;
+    benchmark::DoNotOptimize(r.cost);
+  }
+  state.counters["feasible"] =
+      benchmark::Counter(static_cast<double>(feasible), benchmark::Counter::kAvgIterations);
+}
+BENCHMARK(BM_FleetScheduler)
+    ->Args({8, 2})
+    ->Args({8, 4})
+    ->Args({32, 3})
+    ->Args({64, 4})
+    ->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 

@@ -66,3 +66,23 @@ TEST(RingBuffer, TryPushRefusesWhenFullPushOverwriteDropsOldest) {
   EXPECT_EQ(r[1], 4);
   EXPECT_EQ(r.back(), 5);
 }
+
+TEST(StaticVector, InsertAtAndEraseAtKeepTheOrder) {
+  colag::StaticVector<int, 4> v;
+  ASSERT_TRUE(v.insert_at(0, 2));
+  ASSERT_TRUE(v.insert_at(0, 1));
+  ASSERT_TRUE(v.insert_at(2, 4));
+  ASSERT_TRUE(v.insert_at(2, 3));
+  EXPECT_FALSE(v.insert_at(1, 9));  // full: unchanged
+  ASSERT_EQ(v.size(), 4u);
+  for (int i = 0; i < 4; ++i)
+    EXPECT_EQ(v[static_cast<std::size_t>(i)], i + 1);
+  v.erase_at(1);
+  ASSERT_EQ(v.size(), 3u);
+  EXPECT_EQ(v[0], 1);
+  EXPECT_EQ(v[1], 3);
+  EXPECT_EQ(v[2], 4);
+  v.erase_at(2);
+  EXPECT_EQ(v.size(), 2u);
+  EXPECT_EQ(v.back(), 3);
+}

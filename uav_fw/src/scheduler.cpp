@@ -291,6 +291,29 @@ bool Scheduler::solve_exact(const ScheduleProblem& p, bool hard, const RouteCost
   return true;
 }
 
+bool Scheduler::subset_costs(const ScheduleProblem& p, std::span<RouteCost> costs) {
+  const int n = p.n;
+  if (n < 0 || n > kExactMaxStops || p.closed || costs.size() < (std::size_t{1} << n)) return false;
+  costs[0] = RouteCost{};
+  if (n == 0) return true;
+  ScheduleResult full;
+  if (!solve_exact(p, false, nullptr, full)) return false;
+  for (std::uint32_t mask = 1; mask < (1U << n); ++mask) {
+    RouteCost best{kInf, kInf, 0.0, false};
+    for (int last = 0; last < n; ++last) {
+      if ((mask & (1U << last)) == 0) continue;
+      const std::size_t st =
+          static_cast<std::size_t>(mask) * kExactMaxStops + static_cast<std::size_t>(last);
+      for (std::uint32_t i = state_begin_[st]; i < state_begin_[st] + state_count_[st]; ++i) {
+        const RouteCost c{pool_[i].lateness, pool_[i].travel, 0.0, pool_[i].lateness <= kEps};
+        if (better(c, best)) best = c;
+      }
+    }
+    costs[mask] = best;
+  }
+  return full.exact;
+}
+
 // --- heuristic -----------------------------------------------------------------------------------
 
 namespace {

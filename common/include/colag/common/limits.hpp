@@ -10,6 +10,7 @@ namespace colag::limits {
 
 // --- Robots -----------------------------------------------------------------------------------
 inline constexpr std::size_t kMaxUgvs = 32;
+inline constexpr std::size_t kMaxUavs = 4;               // UAVs sharing the support of one fleet
 inline constexpr std::size_t kMaxRobots = kMaxUgvs + 1;  // + the UAV
 inline constexpr std::size_t kMaxSupportRequests = 64;   // live CollisionInfo requests at the UAV
 inline constexpr std::size_t kMaxNearbyUgvs = 12;        // other UGVs the UAV relays to one UGV

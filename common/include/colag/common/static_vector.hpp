@@ -39,6 +39,23 @@ class StaticVector {
     size_ = n;
     return true;
   }
+  // Puts `value` at position i (<= size), the elements from i on one place later; false if full.
+  [[nodiscard]] constexpr bool insert_at(std::size_t i, const T& value) {
+    assert(i <= size_);
+    if (size_ == N) return false;
+    for (std::size_t k = size_; k > i; --k)
+      items_[k] = items_[k - 1];
+    items_[i] = value;
+    ++size_;
+    return true;
+  }
+  // Removes element i, the elements after it one place earlier (order kept).
+  constexpr void erase_at(std::size_t i) {
+    assert(i < size_);
+    for (std::size_t k = i; k + 1 < size_; ++k)
+      items_[k] = items_[k + 1];
+    pop_back();
+  }
   // Removes element i by moving the last one into its place (O(1), order not kept).
   constexpr void swap_remove(std::size_t i) {
     assert(i < size_);

@@ -94,7 +94,13 @@ class Scheduler {
   const ScheduleResult& solve(const ScheduleProblem& problem,
                               std::span<const std::uint8_t> warm = {});
   const SchedulerConfig& config() const { return config_; }
+  void set_work_budget(std::uint64_t work) { config_.work_budget = work; }  // from the next solve
   std::uint64_t last_work() const { return work_; }  // the last solve's heuristic work
+  // Exact, open routes, n <= kExactMaxStops: the best route over every subset of the stops
+  // (`costs[mask]`, bit j - 1 for stop j; costs[0] is the empty route): what a fleet needs to
+  // split the stops among its vehicles (fleet_scheduler.hpp). `costs` holds 2^n entries. False
+  // if some subset's optimum is not proven (a label front was cut, or label memory ran out).
+  bool subset_costs(const ScheduleProblem& p, std::span<RouteCost> costs);
 
  private:
   struct Label {
