@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <memory>
+#include <optional>
 
 #include "allocation_counter.hpp"
 #include "colag/common/random.hpp"
@@ -27,10 +28,15 @@ class MiniWorld final : public platform::Task {
             hal::scripted::RecordingDrive& drive, const Pose2& start, const Vec3& uav)
       : truth(start), bus_(bus), odo_(odo), drive_(drive), uav_(uav) {}
   const char* name() const override { return "world"; }
-  Status init(TimePoint) override { return clock_.attach(bus_, 0); }
+  Status init(TimePoint) override {
+    if (Status s = second_clock_.attach(bus_, 1); !s) return s;
+    return clock_.attach(bus_, 0);
+  }
   void move_uav(const Vec3& to) { uav_ = to; }
   void step(TimePoint now) override {
     clock_.step(now);  // the UAV answers the UGV's clock requests
+    // A second UAV answers too, its clock 5 s ahead: fleet time is UAV 0's, its replies unused.
+    if (second_uav) second_clock_.step(now + 5s);
     const double dt = 0.02;
     if (odometry_on) {
       const auto& cmd = drive_.last();
@@ -40,24 +46,29 @@ class MiniWorld final : public platform::Task {
       (void)odo_.push(
           {now, cmd.v_mps + rng_.gaussian(0, 0.0336), cmd.omega_radps + rng_.gaussian(0, 0.0292)});
     }
-    if (++ticks_ % 2 == 0) publish_uav(now);  // 25 Hz
+    if (++ticks_ % 2 == 0) {  // 25 Hz
+      publish_uav(now, 0, uav_, flight);
+      if (second_uav) publish_uav(now, 1, *second_uav, second_flight);
+    }
   }
-  void publish_uav(TimePoint now) {
+  void publish_uav(TimePoint now, RobotId id, const Vec3& at, msg::UavFlight says) {
     msg::UavOdometry od;
     od.stamp = now;
-    od.position_m[0] = uav_.x();
-    od.position_m[1] = uav_.y();
-    od.position_m[2] = uav_.z();
-    od.flight = flight;
+    od.uav_id = id;
+    od.position_m[0] = at.x();
+    od.position_m[1] = at.y();
+    od.position_m[2] = at.z();
+    od.flight = says;
     (void)bus_.publish(od);
-    if (!rpe_on || (truth.p - uav_.head<2>()).norm() > 5.0) return;
+    if (!rpe_on || (truth.p - at.head<2>()).norm() > 5.0) return;
     msg::RelativePose rpe;
     rpe.stamp = now;
+    rpe.uav_id = id;
     rpe.ugv_id = 0;
-    rpe.position_m[0] = truth.p.x() - uav_.x() + rng_.gaussian(0, 0.2) + next_rpe_error.x();
-    rpe.position_m[1] = truth.p.y() - uav_.y() + rng_.gaussian(0, 0.2) + next_rpe_error.y();
+    rpe.position_m[0] = truth.p.x() - at.x() + rng_.gaussian(0, 0.2) + next_rpe_error.x();
+    rpe.position_m[1] = truth.p.y() - at.y() + rng_.gaussian(0, 0.2) + next_rpe_error.y();
     next_rpe_error = Vec2::Zero();
-    rpe.position_m[2] = -uav_.z();
+    rpe.position_m[2] = -at.z();
     const Quat q = quat_from_yaw(truth.yaw_rad + rng_.gaussian(0, 0.05));
     rpe.orientation_wxyz[0] = q.w();
     rpe.orientation_wxyz[3] = q.z();
@@ -69,6 +80,8 @@ class MiniWorld final : public platform::Task {
   bool odometry_on = true;
   bool rpe_on = true;
   msg::UavFlight flight = msg::UavFlight::kInControl;  // what the UAV says of its flight
+  std::optional<Vec3> second_uav;                      // a second UAV (id 1) flies here
+  msg::UavFlight second_flight = msg::UavFlight::kInControl;
   Vec2 next_rpe_error = Vec2::Zero();  // an outlier: added to the next relative pose only
   double travelled = 0.0;
   Pose2 truth;
@@ -80,7 +93,7 @@ class MiniWorld final : public platform::Task {
   Vec3 uav_;
   Rng rng_{17};
   int ticks_ = 0;
-  uav::ClockServer clock_;
+  uav::ClockServer clock_, second_clock_;
 };
 
 // Records the support messages the UGV sends.
@@ -427,6 +440,44 @@ TEST(UgvNavTask, AUavWhoseFlightControllerLeftTheMissionStopsItUntilItFliesAgain
   rig.ex.run_until(rig.ex.now() + 100ms);
   EXPECT_EQ(rig.ugv->health().uav_odometry_rejected, rejected + 1);  // the first: too old
   rig.world->flight = msg::UavFlight::kInControl;
+  ASSERT_TRUE(rig.run_until([&] { return rig.ugv->mode() == msg::UgvMode::kArrived; }, 40s))
+      << "mode " << static_cast<int>(rig.ugv->mode());
+}
+
+// Two UAVs 4 m apart both see the UGV: each relative pose is placed by the odometry of the UAV
+// that measured it (one history for both would place half of them 4 m off).
+TEST(UgvNavTask, WithTwoUavsEachRelativePoseIsPlacedByItsOwnUavsOdometry) {
+  Rig rig(Vec2(6.0, 0.0), Vec3(0, 2, 2));
+  rig.world->second_uav = Vec3(4, -2, 2);
+  rig.publish_map(-3.2, -3.2, 9.6, 3.2);
+  ASSERT_TRUE(rig.run_until([&] { return rig.ugv->mode() == msg::UgvMode::kArrived; }, 40s))
+      << "mode " << static_cast<int>(rig.ugv->mode());
+  EXPECT_LT((rig.ugv->estimator().pose().p - rig.world->truth.p).norm(), 0.3);
+  EXPECT_LE(rig.ugv->health().rpe_outliers, 2u);
+  EXPECT_EQ(rig.ugv->health().rpe_unmatched, 0u);
+  // Fleet time is UAV 0's clock; UAV 1's replies (5 s ahead) were not mixed in.
+  const FleetClock& clock = rig.ugv->fleet_clock();
+  EXPECT_GT(clock.replies_rejected(), 10u);
+  EXPECT_LT(std::abs(to_seconds(clock.to_local(rig.ex.now()) - rig.ex.now())), 0.01);
+}
+
+// One of two UAVs leaves the mission: the other still flies it, the UGV drives on. Only when
+// neither does is no support coming.
+TEST(UgvNavTask, OneUavOfTwoLeavingTheMissionDoesNotStopIt) {
+  Rig rig(Vec2(6.0, 0.0));
+  rig.world->second_uav = Vec3(2, 2, 2);
+  rig.publish_map(-3.2, -3.2, 9.6, 3.2);
+  rig.ex.run_until(TimePoint{3s});
+  ASSERT_GT(rig.drive.last().v_mps, 0.1);
+  rig.world->second_flight = msg::UavFlight::kLost;
+  rig.ex.run_until(rig.ex.now() + 500ms);
+  EXPECT_NE(rig.ugv->mode(), msg::UgvMode::kUavUnavailable);
+  EXPECT_EQ(rig.ugv->health().uav_unavailable, 1u);
+  rig.world->flight = msg::UavFlight::kLanding;
+  rig.ex.run_until(rig.ex.now() + 200ms);
+  EXPECT_EQ(rig.ugv->mode(), msg::UgvMode::kUavUnavailable);
+  EXPECT_EQ(rig.drive.last().v_mps, 0.0);
+  rig.world->second_flight = msg::UavFlight::kInControl;
   ASSERT_TRUE(rig.run_until([&] { return rig.ugv->mode() == msg::UgvMode::kArrived; }, 40s))
       << "mode " << static_cast<int>(rig.ugv->mode());
 }

@@ -13,7 +13,8 @@ void FleetClock::step(TimePoint now) {
   msg::ClockReply r;
   while (replies_.pop(r)) {
     // Ours, answering a request of this process (not a replay, not a predecessor's).
-    if (r.ugv_id != id_ || r.request_stamp > now || now - r.request_stamp > config_.max_reply_age) {
+    if (r.ugv_id != id_ || r.uav_id != config_.time_server || r.request_stamp > now ||
+        now - r.request_stamp > config_.max_reply_age) {
       ++replies_rejected_;
       continue;
     }

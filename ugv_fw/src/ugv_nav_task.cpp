@@ -57,7 +57,8 @@ UgvNavTask::UgvNavTask(const UgvNavConfig& config, platform::Transport& transpor
   // UAV's odometry must increase (the history interpolates along it); relative poses may come
   // late and out of order within the EKF's history; the nearby-UGV lists must increase.
   wheel_stamps_ = StampGate(stamp_limits(false));
-  uav_odometry_stamps_ = StampGate(stamp_limits(true));
+  for (Uav& u : uavs_)
+    u.stamps = StampGate(stamp_limits(true));
   rpe_stamps_ = StampGate(stamp_limits(false));
   patch_stamps_ = StampGate(stamp_limits(false));
   nearby_stamps_ = StampGate(stamp_limits(true));
@@ -128,13 +129,19 @@ void UgvNavTask::read_relative_poses(TimePoint now) {
   const bool synchronised = fleet_.synchronised(now);
   msg::UavOdometry od;
   while (uav_odometry_in_.pop(od)) {
+    if (od.uav_id >= limits::kMaxUavs) {
+      ++health_.uav_odometry_rejected;
+      continue;
+    }
+    Uav& uav = uavs_[od.uav_id];
     // Whether the UAV flies the mission needs no clock: it is read from every sample.
-    if (od.flight != uav_flight_ && od.flight != msg::UavFlight::kInControl)
+    if (od.flight != uav.flight && od.flight != msg::UavFlight::kInControl)
       ++health_.uav_unavailable;
-    uav_flight_ = od.flight;
+    uav.flight = od.flight;
+    uav.heard = true;
     // A repeat (the UAV without fresh odometry) carries the flight state alone.
-    if (od.stamp == last_uav_stamp_) continue;
-    last_uav_stamp_ = od.stamp;
+    if (od.stamp == uav.last_stamp) continue;
+    uav.last_stamp = od.stamp;
     if (!synchronised) {
       ++health_.unsynchronised;
       continue;
@@ -142,9 +149,9 @@ void UgvNavTask::read_relative_poses(TimePoint now) {
     od.stamp = fleet_.to_local(od.stamp);
     // A sample from the future would otherwise become the history's newest and lock out every
     // genuine one after it; a UAV whose clock went back starts a new history.
-    const StampGate::Verdict v = uav_odometry_stamps_.check(od.stamp, now);
-    if (v == StampGate::Verdict::kRestarted) uav_history_.clear();
-    if (!StampGate::passed(v) || !uav_history_.push(od)) ++health_.uav_odometry_rejected;
+    const StampGate::Verdict v = uav.stamps.check(od.stamp, now);
+    if (v == StampGate::Verdict::kRestarted) uav.history.clear();
+    if (!StampGate::passed(v) || !uav.history.push(od)) ++health_.uav_odometry_rejected;
   }
   msg::RelativePose rpe;
   while (rpe_in_.pop(rpe)) {
@@ -153,12 +160,14 @@ void UgvNavTask::read_relative_poses(TimePoint now) {
       continue;
     }
     rpe.stamp = fleet_.to_local(rpe.stamp);
-    if (rpe.ugv_id != config_.id || !StampGate::passed(rpe_stamps_.check(rpe.stamp, now))) {
+    if (rpe.ugv_id != config_.id || rpe.uav_id >= limits::kMaxUavs ||
+        !StampGate::passed(rpe_stamps_.check(rpe.stamp, now))) {
       ++health_.rpe_rejected;
       continue;
     }
+    // Placed by the odometry of the UAV that measured it.
     Pose3 uav;
-    if (!uav_history_.pose_at(rpe.stamp, config_.rpe_match_tolerance, uav)) {
+    if (!uavs_[rpe.uav_id].history.pose_at(rpe.stamp, config_.rpe_match_tolerance, uav)) {
       ++health_.rpe_unmatched;
       continue;
     }
@@ -207,6 +216,15 @@ void UgvNavTask::read_relative_poses(TimePoint now) {
   }
 }
 
+bool UgvNavTask::no_uav_in_control() const {
+  bool heard = false;
+  for (const Uav& u : uavs_) {
+    if (u.heard && u.flight == msg::UavFlight::kInControl) return false;
+    heard = heard || u.heard;
+  }
+  return heard;
+}
+
 bool UgvNavTask::agrees_with_init_candidate(const PoseMeasurement& z) const {
   if (!init_candidate_) return false;
   const PoseMeasurement& c = *init_candidate_;
@@ -234,7 +252,7 @@ void UgvNavTask::drive(TimePoint now, double dt) {
     mode_ = msg::UgvMode::kPaused;
   } else if (aborted_) {
     mode_ = msg::UgvMode::kAborted;
-  } else if (uav_flight_ != msg::UavFlight::kInControl && ekf_.initialized() && !arrived_) {
+  } else if (no_uav_in_control() && ekf_.initialized() && !arrived_) {
     // Its flight controller failed safe, was taken over or lands: no support is coming and the
     // UAV itself may come down anywhere.
     mode_ = msg::UgvMode::kUavUnavailable;
@@ -330,9 +348,10 @@ void UgvNavTask::planning_step(TimePoint now) {
 
 void UgvNavTask::sum_stamp_counters() {
   StampCounters sum;
-  for (const StampGate* g :
-       {&wheel_stamps_, &uav_odometry_stamps_, &rpe_stamps_, &patch_stamps_, &nearby_stamps_})
+  for (const StampGate* g : {&wheel_stamps_, &rpe_stamps_, &patch_stamps_, &nearby_stamps_})
     sum += g->counters();
+  for (const Uav& u : uavs_)
+    sum += u.stamps.counters();
   health_.stamps = sum;
 }
 

@@ -37,7 +37,7 @@ struct UgvHealth {
   std::uint64_t drive_errors = 0;
   std::uint64_t watchdog_trips = 0;   // wheel odometry went silent
   std::uint64_t base_faults = 0;      // the base reported a fault (each new one counted once)
-  std::uint64_t uav_unavailable = 0;  // times the UAV said its flight controller left the mission
+  std::uint64_t uav_unavailable = 0;  // times a UAV said its flight controller left the mission
   std::uint64_t plans = 0;
   std::uint64_t plan_failures = 0;
   std::uint64_t window_moves = 0;  // the map's window moved with the robot (map_window.hpp)
@@ -211,12 +211,24 @@ class UgvNavTask {
   platform::QueueReader<msg::NearbyUgvs, 4> nearby_in_;
 
   // Each input stream's stamp checks.
-  StampGate wheel_stamps_, uav_odometry_stamps_, rpe_stamps_, patch_stamps_, nearby_stamps_;
+  StampGate wheel_stamps_, rpe_stamps_, patch_stamps_, nearby_stamps_;
 
   FleetClock fleet_;
   UgvEkf ekf_;
   std::optional<PoseMeasurement> init_candidate_;  // the first of two to start the estimator
-  UavOdometryHistory uav_history_;
+  // Each UAV of the fleet (by its id): its odometry, to place the relative poses it measures;
+  // and whether its flight controller flies the mission, as its last sample said.
+  struct Uav {
+    StampGate stamps;
+    UavOdometryHistory history;
+    msg::UavFlight flight = msg::UavFlight::kInControl;
+    TimePoint last_stamp = kNever;  // its last sample's (fleet time)
+    bool heard = false;
+  };
+  std::array<Uav, limits::kMaxUavs> uavs_{};
+  // No UAV heard from flies the mission (each one's flight controller failed safe, was taken
+  // over or lands): no support is coming.
+  bool no_uav_in_control() const;
   MapStore map_;
   Planner planner_;
   Path path_;
@@ -243,8 +255,6 @@ class UgvNavTask {
   hal::DriveHealth base_fault_;
   bool faulty() const { return base_fault_.fault != msg::BaseFault::kNone; }
   msg::BaseFault drive_fault_seen_ = msg::BaseFault::kNone;  // the base's, last period
-  msg::UavFlight uav_flight_ = msg::UavFlight::kInControl;   // as the UAV's last sample said
-  TimePoint last_uav_stamp_ = kNever;                        // its stamp (fleet time)
   bool stopped_for_support_ = false;
   bool awaiting_fix_ = false;  // at the goal by its estimate, not sure enough to have arrived
   bool stopped_for_robot_ = false;
