@@ -30,7 +30,7 @@ std::unique_ptr<FleetProblem> random_fleet(Rng& rng, int n, int vehicles, double
     for (int j = 1; j <= n; ++j)
       p->travel[i][j] = i == j ? 0.0 : cruise_time_s(stops[i], stops[j], lim);
     p->due[i] = rng.uniform(lo, hi);
-    p->owner[i] = static_cast<std::int8_t>(
+    p->owner[i] = static_cast<std::int16_t>(
         static_cast<int>(rng.below(static_cast<std::uint64_t>(vehicles) + 2)) -
         1);  // -1 .. vehicles: some free, some gone
   }
@@ -43,12 +43,15 @@ std::unique_ptr<FleetProblem> random_fleet(Rng& rng, int n, int vehicles, double
   return p;
 }
 
-// The objective as the scheduler sees it, for comparisons: (lateness + switch cost, travel).
+// The objective as the scheduler sees it, for comparisons: (lateness, travel), the switch cost
+// on the travel (or on the waiting).
 struct Objective {
   double primary, travel;
 };
-Objective objective(const FleetProblem& p, const FleetCost& c) {
-  return {c.lateness_s + p.switch_cost_s * c.switches, c.travel_s};
+Objective objective(const FleetProblem& p, const FleetCost& c, bool on_waiting = false) {
+  const double s = p.switch_cost_s * c.switches;
+  return on_waiting ? Objective{c.lateness_s + s, c.travel_s}
+                    : Objective{c.lateness_s, c.travel_s + s};
 }
 bool lexicographically_less(const Objective& a, const Objective& b) {
   if (std::abs(a.primary - b.primary) > 1e-9) return a.primary < b.primary;
@@ -56,7 +59,7 @@ bool lexicographically_less(const Objective& a, const Objective& b) {
 }
 
 // Every split of the stops among the vehicles, every order of each share.
-Objective brute_force(const FleetProblem& p) {
+Objective brute_force(const FleetProblem& p, bool on_waiting) {
   const int n = p.n, k = p.vehicles;
   // Best order of every subset for every vehicle.
   std::vector<std::vector<Objective>> best(static_cast<std::size_t>(k),
@@ -73,7 +76,9 @@ Objective brute_force(const FleetProblem& p) {
       Objective& b = best[static_cast<std::size_t>(v)][mask];
       do {
         const RouteCost c = evaluate_route(p, v, order);
-        const Objective o{c.lateness_s + p.switch_cost_s * switches, c.travel_s};
+        const double sc = p.switch_cost_s * switches;
+        const Objective o = on_waiting ? Objective{c.lateness_s + sc, c.travel_s}
+                                       : Objective{c.lateness_s, c.travel_s + sc};
         if (lexicographically_less(o, b)) b = o;
       } while (std::next_permutation(order.begin(), order.end()));
     }
@@ -122,24 +127,33 @@ void expect_every_stop_once(const FleetProblem& p, const FleetResult& r) {
 TEST(FleetScheduler, ExactEqualsBruteForceOverEverySplitAndOrder) {
   Rng rng(77);
   auto fleet = std::make_unique<FleetScheduler>();
-  int late = 0, on_time = 0;
+  int late = 0, on_time = 0, waiting_regime = 0;
   for (int trial = 0; trial < 150; ++trial) {
     const int n = 1 + static_cast<int>(rng.below(6));
     const int k = 1 + static_cast<int>(rng.below(3));
     // Tight deadlines half the time: the lateness and the switch cost decide.
     const bool tight = trial % 2 == 0;
     auto p = random_fleet(rng, n, k, tight ? 2.0 : 10.0, tight ? 8.0 : 40.0);
-    const FleetResult& r = fleet->solve(*p);
+    // Every other trial the last plan is the owners' (in stop order): when it is late, the
+    // switch cost counts on the waiting.
+    FleetRoutes last;
+    for (int j = 1; j <= n; ++j) {
+      if (p->owner[j] >= 0 && p->owner[j] < k)
+        (void)last[static_cast<std::size_t>(p->owner[j])].push_back(static_cast<std::uint8_t>(j));
+    }
+    const FleetResult& r = fleet->solve(*p, trial % 4 < 2 ? &last : nullptr);
     ASSERT_TRUE(r.exact);
     expect_every_stop_once(*p, r);
-    const Objective want = brute_force(*p);
-    const Objective got = objective(*p, r.cost);
+    waiting_regime += r.switch_on_waiting ? 1 : 0;
+    const Objective want = brute_force(*p, r.switch_on_waiting);
+    const Objective got = objective(*p, r.cost, r.switch_on_waiting);
     EXPECT_NEAR(got.primary, want.primary, 1e-6) << "trial " << trial;
     EXPECT_NEAR(got.travel, want.travel, 1e-6) << "trial " << trial;
     (r.cost.feasible ? on_time : late)++;
   }
-  EXPECT_GT(late, 20);  // both regimes were exercised
+  EXPECT_GT(late, 20);  // late and on time, the switch cost on the waiting and on the travel
   EXPECT_GT(on_time, 20);
+  EXPECT_GT(waiting_regime, 10);
 }
 
 TEST(FleetScheduler, HeuristicIsCloseToExactOnSmallFleets) {
@@ -166,7 +180,7 @@ TEST(FleetScheduler, HeuristicIsCloseToExactOnSmallFleets) {
     }
   }
   EXPECT_GT(compared, trials * 3 / 4);
-  EXPECT_LT(gap_sum / compared, 0.02);  // mean travel gap where the objective's first part ties
+  EXPECT_LT(gap_sum / compared, 0.01);  // mean travel gap where the objective's first part ties
   EXPECT_LE(lost_feasibility, trials / 50);
 }
 
@@ -206,19 +220,20 @@ TEST(FleetScheduler, OneVehicleIsTheSingleUavProblem) {
   EXPECT_LT(gap / compared, 0.01);
 }
 
-TEST(FleetScheduler, AssignmentsStayPutOnNoiseAndMoveOnlyToSaveMoreThanTheSwitchCost) {
+TEST(FleetScheduler, AssignmentsStayPutOnNoiseAndMoveOnlyWhenThatPays) {
   Rng rng(80);
   auto fleet = std::make_unique<FleetScheduler>();
-  int moved_on_time = 0, plans_on_time = 0, switched = 0;
+  int switched = 0, returns = 0, steps = 0;
   for (int trial = 0; trial < 60; ++trial) {
     const int n = trial % 2 == 0 ? 7 : 24;  // the exact and the heuristic solver
     auto p = random_fleet(rng, n, 3, trial % 3 == 0 ? 3.0 : 15.0, 60.0);
     p->owner.fill(-1);
     FleetResult last = fleet->solve(*p);
+    std::vector<int> left(static_cast<std::size_t>(n) + 1, -1);  // the vehicle each stop left
     // The next scheduling steps: everything moved a little (the UAVs flew on, the estimates
     // changed), the same stops; each step starts from the last plan and its assignment.
-    // At the last step UAV 0 is suddenly 30 s further from everything (sent away): what it holds
-    // is late now, and moving its stops pays.
+    // At the last step UAV 0 is suddenly 30 s further from everything (sent away): moving what
+    // it holds pays.
     for (int step = 0; step < 11; ++step) {
       for (int k = 1; k <= n; ++k) {
         p->owner[k] = last.vehicle[k];
@@ -230,27 +245,37 @@ TEST(FleetScheduler, AssignmentsStayPutOnNoiseAndMoveOnlyToSaveMoreThanTheSwitch
       const FleetCost kept = evaluate_fleet(*p, last.routes);  // the last plan, as it is now
       const FleetResult& r = fleet->solve(*p, &last.routes);
       expect_every_stop_once(*p, r);
+      ++steps;
       // Never worse than keeping the last plan, switch cost included.
-      EXPECT_FALSE(lexicographically_less(objective(*p, kept), objective(*p, r.cost)));
+      const bool on_waiting = r.switch_on_waiting;
+      EXPECT_EQ(on_waiting, !kept.feasible);
+      EXPECT_FALSE(lexicographically_less(objective(*p, kept, on_waiting),
+                                          objective(*p, r.cost, on_waiting)));
       int moves = 0;
-      for (int k = 1; k <= n; ++k)
-        moves += r.vehicle[k] != last.vehicle[k] ? 1 : 0;
+      for (int k = 1; k <= n; ++k) {
+        if (r.vehicle[k] == last.vehicle[k]) continue;
+        ++moves;
+        if (r.vehicle[k] == left[static_cast<std::size_t>(k)]) ++returns;  // back and forth
+        left[static_cast<std::size_t>(k)] = last.vehicle[k];
+      }
       EXPECT_EQ(moves, r.cost.switches);
       if (moves > 0) {
         ++switched;
-        // A move pays for itself: the waiting it saves exceeds the switch cost of every move.
-        EXPECT_LT(r.cost.lateness_s + p->switch_cost_s * moves, kept.lateness_s + 1e-9);
-      }
-      if (kept.feasible) {
-        ++plans_on_time;
-        moved_on_time += moves;
+        // A move pays for itself: a late plan saves more waiting than the switch cost of every
+        // move; one on time keeps a deadline or saves more flying than that.
+        const double cost = p->switch_cost_s * moves;
+        if (on_waiting) {
+          EXPECT_LT(r.cost.lateness_s + cost, kept.lateness_s - 1e-9);
+        } else {
+          EXPECT_TRUE(r.cost.lateness_s < kept.lateness_s - 1e-9 ||
+                      r.cost.travel_s + cost < kept.travel_s - 1e-9);
+        }
       }
       last = r;
     }
   }
-  EXPECT_GT(plans_on_time, 100);
-  EXPECT_EQ(moved_on_time, 0);  // a plan on time keeps every assignment
-  EXPECT_GT(switched, 0);       // and a late one does move stops when that pays
+  EXPECT_GT(switched, 10);          // moves happen when they pay (UAV 0 sent away) ...
+  EXPECT_LE(returns, steps / 100);  // ... and a stop almost never goes back where it was
 }
 
 TEST(FleetScheduler, AVehicleThatIsGoneHasItsStopsTakenOver) {
@@ -290,11 +315,9 @@ TEST(FleetScheduler, LargeFleetsStayWithinTheWorkBudgetAndServeEveryStop) {
     EXPECT_LE(fleet->last_work(), 3 * fleet->config().work_budget) << "trial " << trial;
     // Warm from its own plan: never worse.
     const FleetRoutes routes = r.routes;
-    const FleetCost cold = r.cost;
     for (int k = 1; k <= p->n; ++k)
       p->owner[k] = r.vehicle[k];
     const FleetResult& w = fleet->solve(*p, &routes);
-    EXPECT_FALSE(better(*p, evaluate_fleet(*p, routes), w.cost));
-    EXPECT_FALSE(better(*p, cold, w.cost));
+    EXPECT_FALSE(better(*p, evaluate_fleet(*p, routes), w.cost, w.switch_on_waiting));
   }
 }

@@ -2,6 +2,8 @@
 // the mock LiDAR over a box world, and UGVs played by the test through the transport.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -460,4 +462,121 @@ TEST(UavSupervisorTask, AFlightControllerThatLeavesTheMissionIsNoLongerCommanded
   EXPECT_LE(odometry.got.size(), before + 7);
   EXPECT_EQ(odometry.got.back().stamp, last_stamp);  // no new pose is made up
   EXPECT_EQ(odometry.got.back().fault, msg::FlightFault::kSilent);
+}
+
+namespace {
+
+// Two UAVs (ids 0 and 1) over one site on one bus, the UGVs played by the test.
+struct TwoUavs {
+  TwoUavs() {
+    sim::MapGenConfig cfg;
+    cfg.boxes = 40;
+    cfg.seed = 3;
+    world = sim::generate_box_world(cfg).value();
+    bus = std::make_unique<platform::LoopbackTransport>(1);
+    pump = std::make_unique<platform::TransportPump>(*bus);
+    EXPECT_TRUE(ex.add({pump.get(), 10ms, 1ms}));
+    for (std::size_t i = 0; i < 2; ++i) {
+      lidar[i] = std::make_unique<hal::scripted::ScriptedLidar>();
+      sky[i] = std::make_unique<Sky>(odom[i], *lidar[i], camera[i], fc[i], world);
+      sky[i]->p = Vec3(i == 0 ? -12.0 : 12.0, 0.0, 1.0);
+      UavSupervisorConfig c;
+      c.id = static_cast<RobotId>(i);
+      uav[i] = std::make_unique<UavSupervisorTask>(c, *bus, odom[i], *lidar[i], camera[i], fc[i]);
+      EXPECT_TRUE(ex.add({sky[i].get(), 20ms, 5ms}));
+      EXPECT_TRUE(ex.add(uav[i]->rows()));
+    }
+    EXPECT_TRUE(ex.init());
+  }
+  // Every UGV says where it is and asks for support at its point (a heartbeat, as UGVs do).
+  void heartbeat(double t_pc) {
+    for (std::size_t id = 0; id < ugvs.size(); ++id) {
+      msg::UgvStatus s;
+      s.stamp = ex.now();
+      s.ugv_id = static_cast<RobotId>(id);
+      s.mode = msg::UgvMode::kWaitingForSupport;
+      s.position_m[0] = ugvs[id].x();
+      s.position_m[1] = ugvs[id].y();
+      ASSERT_TRUE(bus->publish(s));
+      msg::CollisionInfo ci;
+      ci.stamp = ex.now();
+      ci.ugv_id = static_cast<RobotId>(id);
+      ci.seq = ++seq;
+      ci.support_point_m[0] = ugvs[id].x();
+      ci.support_point_m[1] = ugvs[id].y() + 1.0;
+      ci.collision_point_m[0] = ugvs[id].x();
+      ci.collision_point_m[1] = ugvs[id].y() + 3.0;
+      ci.time_to_collision_s = t_pc;
+      ASSERT_TRUE(bus->publish(ci));
+    }
+  }
+  std::vector<RobotId> held(std::size_t i) const {
+    std::vector<RobotId> out;
+    const msg::SupportPlan& p = uav[i]->plan();
+    for (std::size_t k = 0; k < p.stops.count; ++k)
+      out.push_back(p.stops[k].ugv_id);
+    std::sort(out.begin(), out.end());
+    return out;
+  }
+
+  sim::BoxWorld world;
+  std::array<hal::scripted::ScriptedOdometrySource, 2> odom;
+  std::array<std::unique_ptr<hal::scripted::ScriptedLidar>, 2> lidar;
+  std::array<hal::scripted::ScriptedRelativePoseSensor, 2> camera;
+  std::array<hal::scripted::RecordingFlightController, 2> fc;
+  std::unique_ptr<platform::LoopbackTransport> bus;
+  std::array<std::unique_ptr<Sky>, 2> sky;
+  std::array<std::unique_ptr<UavSupervisorTask>, 2> uav;
+  std::unique_ptr<platform::TransportPump> pump;
+  platform::LockstepExecutor ex;
+  std::vector<Vec2> ugvs;
+  std::uint32_t seq = 0;
+};
+
+}  // namespace
+
+// Each UAV serves the UGVs near it and no UGV is in both plans; when one UAV's flight controller
+// leaves the mission, the other takes its UGVs over.
+TEST(UavSupervisorTask, TwoUavsSplitTheRequestsAndOneTakesOverWhenTheOtherIsLost) {
+  TwoUavs f;
+  f.ugvs = {Vec2(-13, -5), Vec2(-11, 5), Vec2(13, -5), Vec2(11, 5)};
+  for (int i = 0; i < 3; ++i) {
+    f.heartbeat(30.0 - i);
+    f.ex.run_until(f.ex.now() + 1s);
+  }
+  EXPECT_EQ(f.held(0), (std::vector<RobotId>{0, 1}));
+  EXPECT_EQ(f.held(1), (std::vector<RobotId>{2, 3}));
+  EXPECT_GT(f.uav[0]->health().fleet_schedules, 10u);
+  EXPECT_GT(f.uav[1]->health().fleet_schedules, 10u);
+  EXPECT_EQ(f.uav[0]->health().peer_messages_rejected, 0u);
+  // UAV 1 fails safe: within a second UAV 0 holds every request.
+  f.fc[1].set_status({msg::UavFlight::kLost, msg::FlightFault::kFailsafe});
+  for (int i = 0; i < 2; ++i) {
+    f.heartbeat(27.0 - i);
+    f.ex.run_until(f.ex.now() + 1s);
+  }
+  EXPECT_EQ(f.held(0), (std::vector<RobotId>{0, 1, 2, 3}));
+  EXPECT_EQ(f.uav[0]->health().peers_lost, 1u);
+}
+
+// A UAV that goes silent (no odometry, no plans: a crash, a dead link) is gone after
+// peer_timeout: its UGVs are taken over.
+TEST(UavSupervisorTask, ASilentUavsUgvsAreTakenOverAfterThePeerTimeout) {
+  TwoUavs f;
+  f.ugvs = {Vec2(-13, -5), Vec2(13, -5)};
+  for (int i = 0; i < 2; ++i) {
+    f.heartbeat(30.0 - i);
+    f.ex.run_until(f.ex.now() + 1s);
+  }
+  ASSERT_EQ(f.held(0), (std::vector<RobotId>{0}));
+  ASSERT_EQ(f.held(1), (std::vector<RobotId>{1}));
+  f.sky[1]->odometry_on = false;  // nothing new from UAV 1 (its plans still say it holds UGV 1)
+  f.heartbeat(28.0);
+  f.ex.run_until(f.ex.now() + 1s);
+  EXPECT_EQ(f.held(0), (std::vector<RobotId>{0}));  // not yet: 1 s < peer_timeout
+  for (int i = 0; i < 3; ++i) {
+    f.heartbeat(27.0 - i);
+    f.ex.run_until(f.ex.now() + 1s);
+  }
+  EXPECT_EQ(f.held(0), (std::vector<RobotId>{0, 1}));
 }

@@ -11,7 +11,7 @@ namespace {
 constexpr double kEps = 1e-9;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// (objective, travel) pairs, lexicographic; the objective holds the switch cost.
+// (lateness, travel) pairs, lexicographic; the travel holds the switch cost.
 bool less(const RouteCost& a, const RouteCost& b) {
   if (std::abs(a.lateness_s - b.lateness_s) > kEps) return a.lateness_s < b.lateness_s;
   return a.travel_s < b.travel_s - kEps;
@@ -63,9 +63,14 @@ FleetCost evaluate_fleet(const FleetProblem& p, const FleetRoutes& routes) {
   return f;
 }
 
-bool better(const FleetProblem& p, const FleetCost& a, const FleetCost& b) {
-  return less({a.lateness_s + p.switch_cost_s * a.switches, a.travel_s, 0.0, true},
-              {b.lateness_s + p.switch_cost_s * b.switches, b.travel_s, 0.0, true});
+bool better(const FleetProblem& p, const FleetCost& a, const FleetCost& b, bool on_waiting) {
+  const double ca = p.switch_cost_s * a.switches, cb = p.switch_cost_s * b.switches;
+  if (on_waiting) {
+    return less({a.lateness_s + ca, a.travel_s, 0.0, true},
+                {b.lateness_s + cb, b.travel_s, 0.0, true});
+  }
+  return less({a.lateness_s, a.travel_s + ca, 0.0, true},
+              {b.lateness_s, b.travel_s + cb, 0.0, true});
 }
 
 FleetScheduler::FleetScheduler(const FleetSchedulerConfig& config)
@@ -83,6 +88,18 @@ const FleetResult& FleetScheduler::solve(const FleetProblem& problem, const Flee
   p.switch_cost_s = std::isfinite(p.switch_cost_s) ? std::max(0.0, p.switch_cost_s) : 0.0;
   for (int k = 1; k <= p.n; ++k) {
     if (p.owner[k] >= p.vehicles) p.owner[k] = -1;  // its vehicle is gone: free
+  }
+  // Where the switch cost counts: on the waiting if the last plan is late, else on the flying.
+  on_waiting_ = false;
+  if (warm != nullptr) {
+    for (int v = 0; v < p.vehicles; ++v) {
+      scratch_.clear();
+      for (const std::uint8_t k : (*warm)[static_cast<std::size_t>(v)]) {
+        if (k >= 1 && k <= p.n) (void)scratch_.push_back(k);
+      }
+      on_waiting_ =
+          on_waiting_ || !evaluate_route(p, v, {scratch_.begin(), scratch_.end()}).feasible;
+    }
   }
   for (Route& r : routes_)
     r.clear();
@@ -119,7 +136,7 @@ RouteCost FleetScheduler::route_cost(const FleetProblem& p, int v,
                                      std::span<const std::uint8_t> route) {
   work_ += route.size() + 1;
   RouteCost c = evaluate_route(p, v, route);
-  c.lateness_s += p.switch_cost_s * switches(p, v, route);
+  (on_waiting_ ? c.lateness_s : c.travel_s) += p.switch_cost_s * switches(p, v, route);
   return c;
 }
 
@@ -139,7 +156,7 @@ bool FleetScheduler::solve_exact(const FleetProblem& p) {
       int taken = 0;
       for (int k = 1; k <= n; ++k)
         taken += (mask & (1U << (k - 1))) != 0 && p.owner[k] >= 0 && p.owner[k] != v ? 1 : 0;
-      costs[mask].lateness_s += p.switch_cost_s * taken;
+      (on_waiting_ ? costs[mask].lateness_s : costs[mask].travel_s) += p.switch_cost_s * taken;
     }
   }
   // split_[v][S]: the best way for vehicles v.. to serve the stops S; take_[v][S]: v's share.
@@ -289,6 +306,84 @@ bool FleetScheduler::swap_pass(const FleetProblem& p) {
   return moved;
 }
 
+bool FleetScheduler::tails_pass(const FleetProblem& p) {
+  bool moved = false;
+  const auto vehicles = static_cast<std::size_t>(p.vehicles);
+  for (std::size_t a = 0; a < vehicles; ++a) {
+    for (std::size_t b = a + 1; b < vehicles; ++b) {
+      Route& ra = routes_[a];
+      Route& rb = routes_[b];
+      const auto ai = static_cast<int>(a), bi = static_cast<int>(b);
+      RouteCost now =
+          sum(route_cost(p, ai, {ra.begin(), ra.end()}), route_cost(p, bi, {rb.begin(), rb.end()}));
+      for (std::size_t i = 0; i <= ra.size(); ++i) {
+        for (std::size_t j = 0; j <= rb.size(); ++j) {
+          if (work_ >= config_.work_budget) return moved;
+          if (i == ra.size() && j == rb.size()) continue;  // nothing exchanged
+          scratch_.clear();
+          other_.clear();
+          for (std::size_t k = 0; k < i; ++k)
+            (void)scratch_.push_back(ra[k]);
+          for (std::size_t k = j; k < rb.size(); ++k)
+            (void)scratch_.push_back(rb[k]);
+          for (std::size_t k = 0; k < j; ++k)
+            (void)other_.push_back(rb[k]);
+          for (std::size_t k = i; k < ra.size(); ++k)
+            (void)other_.push_back(ra[k]);
+          const RouteCost then = sum(route_cost(p, ai, {scratch_.begin(), scratch_.end()}),
+                                     route_cost(p, bi, {other_.begin(), other_.end()}));
+          if (!less(then, now)) continue;
+          ra = scratch_;
+          rb = other_;
+          now = then;
+          moved = true;
+        }
+      }
+    }
+  }
+  return moved;
+}
+
+void FleetScheduler::descend(const FleetProblem& p) {
+  for (;;) {
+    bool moved = relocate_pass(p);
+    moved = swap_pass(p) || moved;
+    moved = tails_pass(p) || moved;
+    if (!moved || work_ >= config_.work_budget) return;
+  }
+}
+
+void FleetScheduler::iterate(const FleetProblem& p) {
+  best_ = routes_;
+  FleetCost best = evaluate_fleet(p, routes_);
+  const int patience = std::max(1, p.n);
+  const auto vehicles = static_cast<std::uint64_t>(p.vehicles);
+  for (int idle = 0; idle < patience && work_ < config_.work_budget;) {
+    const std::uint64_t kicks = 1 + rng_.below(2);
+    for (std::uint64_t k = 0; k < kicks; ++k) {
+      const std::size_t a = rng_.below(vehicles);
+      if (routes_[a].empty()) continue;
+      const std::size_t b = (a + 1 + rng_.below(vehicles - 1)) % vehicles;
+      const std::size_t i = rng_.below(routes_[a].size());
+      const std::uint8_t stop = routes_[a][i];
+      routes_[a].erase_at(i);
+      (void)routes_[b].insert_at(rng_.below(routes_[b].size() + 1), stop);
+    }
+    descend(p);
+    work_ += static_cast<std::uint64_t>(p.n);
+    const FleetCost c = evaluate_fleet(p, routes_);
+    if (better(p, c, best, on_waiting_)) {
+      best_ = routes_;
+      best = c;
+      idle = 0;
+    } else {
+      routes_ = best_;
+      ++idle;
+    }
+  }
+  routes_ = best_;
+}
+
 void FleetScheduler::order_routes(const FleetProblem& p, int rounds_left) {
   std::size_t routes_left = 0;
   for (std::size_t v = 0; v < static_cast<std::size_t>(p.vehicles); ++v)
@@ -333,13 +428,23 @@ void FleetScheduler::solve_heuristic(const FleetProblem& p, const FleetRoutes* w
   });
   for (const std::uint8_t k : rest)
     insert(p, k);
-  // One vehicle: nothing moves between routes, its route gets the whole budget at once.
-  const int rounds = p.vehicles > 1 ? std::max(1, config_.rounds) : 1;
-  for (int round = 0; round < rounds && work_ < config_.work_budget; ++round) {
-    bool moved = p.vehicles > 1 && relocate_pass(p);
-    moved = p.vehicles > 1 && swap_pass(p) ? true : moved;
-    order_routes(p, rounds - round);
-    if (!moved && round > 0) break;
+  if (p.vehicles == 1) {  // nothing moves between routes: its route gets the whole budget
+    order_routes(p, 1);
+    finish(false);
+    return;
+  }
+  if (warm == nullptr) rng_ = Rng(config_.seed + static_cast<std::uint64_t>(p.n));
+  // Half the budget for the split (descents, then kicks), the rest for the routes' orders.
+  const std::uint64_t budget = config_.work_budget;
+  config_.work_budget = budget / 2;
+  descend(p);
+  iterate(p);
+  config_.work_budget = budget;
+  for (int round = 0; round < config_.rounds && work_ < config_.work_budget; ++round) {
+    order_routes(p, config_.rounds - round);
+    const FleetCost before = evaluate_fleet(p, routes_);
+    descend(p);
+    if (!better(p, evaluate_fleet(p, routes_), before, on_waiting_)) break;
   }
   finish(false);
 }
@@ -353,10 +458,11 @@ void FleetScheduler::finish(bool exact) {
     const Route& r = routes_[static_cast<std::size_t>(v)];
     (void)evaluate_route(p, v, {r.begin(), r.end()}, result_.arrival.data());
     for (const std::uint8_t k : r)
-      result_.vehicle[k] = static_cast<std::int8_t>(v);
+      result_.vehicle[k] = static_cast<std::int16_t>(v);
   }
   result_.cost = evaluate_fleet(p, routes_);
   result_.exact = exact;
+  result_.switch_on_waiting = on_waiting_;
 }
 
 }  // namespace colag::uav

@@ -72,7 +72,8 @@ UavSupervisorTask::UavSupervisorTask(const UavSupervisorConfig& config,
       flight_cutter_(flight_cutter_config(config_)),
       flight_layer_(flight_layer_config(config_)),
       flight_(config_.flight),
-      scheduler_(config.scheduler) {
+      scheduler_(config.scheduler),
+      fleet_(config.fleet) {
   const Duration skew = config.max_future_skew;
   odometry_stamps_ = StampGate({skew, config.max_input_age, true});
   camera_stamps_ = StampGate({skew, config.max_input_age, false});
@@ -84,7 +85,11 @@ Status UavSupervisorTask::init(TimePoint now) {
   if (initialised_) return Status::ok();
   if (Status s = requests_in_.attach(transport_); !s) return s;
   if (Status s = statuses_in_.attach(transport_); !s) return s;
-  if (Status s = clock_server_.attach(transport_, config_.id); !s) return s;
+  if (Status s = peer_odometry_in_.attach(transport_); !s) return s;
+  if (Status s = peer_plans_in_.attach(transport_); !s) return s;
+  if (config_.id == config_.time_server) {
+    if (Status s = clock_server_.attach(transport_, config_.id); !s) return s;
+  }
   last_control_ = now;
   initialised_ = true;
   return Status::ok();
@@ -305,6 +310,48 @@ void UavSupervisorTask::read_statuses(TimePoint now) {
   }
 }
 
+void UavSupervisorTask::read_peers(TimePoint now) {
+  msg::UavOdometry od;
+  while (peer_odometry_in_.pop(od)) {
+    if (od.uav_id == config_.id) continue;  // our own
+    if (od.uav_id >= limits::kMaxUavs || !std::isfinite(od.position_m[0]) ||
+        !std::isfinite(od.position_m[1]) || !std::isfinite(od.velocity_mps[0]) ||
+        !std::isfinite(od.velocity_mps[1])) {
+      ++health_.peer_messages_rejected;
+      continue;
+    }
+    Peer& peer = peers_[od.uav_id];
+    peer.known = true;
+    peer.heard = now;  // our clock: its stamps are its own (or fleet time)
+    peer.p = Vec2(od.position_m[0], od.position_m[1]);
+    peer.v = Vec2(od.velocity_mps[0], od.velocity_mps[1]);
+    peer.flight = od.flight;
+  }
+  msg::SupportPlan plan;
+  while (peer_plans_in_.pop(plan)) {
+    if (plan.uav_id == config_.id) continue;
+    if (plan.uav_id >= limits::kMaxUavs || plan.stops.count > plan.stops.capacity()) {
+      ++health_.peer_messages_rejected;
+      continue;
+    }
+    Peer& peer = peers_[plan.uav_id];
+    peer.claims.clear();
+    for (std::size_t i = 0; i < plan.stops.count; ++i) {
+      if (plan.stops[i].ugv_id < limits::kMaxUgvs)
+        (void)peer.claims.push_back(plan.stops[i].ugv_id);
+    }
+  }
+  for (Peer& peer : peers_) {
+    const bool live = peer.known && now - peer.heard <= config_.peer_timeout &&
+                      peer.flight == msg::UavFlight::kInControl;
+    if (peer.live && !live) {
+      ++health_.peers_lost;
+      peer.claims.clear();  // what it held is free
+    }
+    peer.live = live;
+  }
+}
+
 void UavSupervisorTask::solve(TimePoint now) {
   stop_ugv_.clear();
   problem_ = ScheduleProblem{};
@@ -348,8 +395,16 @@ void UavSupervisorTask::solve(TimePoint now) {
       if (stop_ugv_[k] == id) (void)warm_.push_back(static_cast<std::uint8_t>(k + 1));
     }
   }
-  schedule_ = scheduler_.solve(problem_, {warm_.begin(), warm_.end()});
-  if (config_.vmax_escalation && !schedule_.cost.feasible) {
+  StaticVector<RobotId, limits::kMaxUavs> live;
+  for (RobotId id = 0; id < limits::kMaxUavs; ++id) {
+    if (peers_[id].live) (void)live.push_back(id);
+  }
+  if (!live.empty()) {
+    solve_with_peers({live.begin(), live.end()});
+  } else {
+    schedule_ = scheduler_.solve(problem_, {warm_.begin(), warm_.end()});
+  }
+  if (live.empty() && config_.vmax_escalation && !schedule_.cost.feasible) {
     double speedup = 1.0;
     for (int k = 0; k < 100 && !schedule_.cost.feasible; ++k) {
       speedup *= 1.5;
@@ -366,6 +421,69 @@ void UavSupervisorTask::solve(TimePoint now) {
   ++health_.schedules;
   health_.schedules_exact += schedule_.exact;
   health_.plan_age_max = std::max(health_.plan_age_max, schedule_.age_steps);
+}
+
+void UavSupervisorTask::solve_with_peers(std::span<const RobotId> live) {
+  FleetProblem& f = fleet_problem_;
+  const int n = problem_.n;
+  f.n = n;
+  f.vehicles = static_cast<int>(live.size()) + 1;  // vehicle 0: this UAV; then the peers by id
+  f.switch_cost_s = config_.fleet_switch_cost_s;
+  for (int i = 1; i <= n; ++i) {
+    for (int j = 1; j <= n; ++j)
+      f.travel[i][j] = problem_.travel[i][j];
+    f.first[0][i] = problem_.travel[0][i];
+    f.ready[i] = problem_.ready[i];
+    f.due[i] = problem_.due[i];
+    f.weight[i] = problem_.weight[i];
+  }
+  for (std::size_t v = 1; v <= live.size(); ++v) {
+    const Peer& peer = peers_[live[v - 1]];
+    for (int j = 1; j <= n; ++j) {
+      const Vec2 to = requests_[stop_ugv_[static_cast<std::size_t>(j - 1)]].support;
+      f.first[v][j] = first_leg_time_s(peer.p, peer.v, to, config_.flight.limits);
+    }
+  }
+  // Who holds each stop: the plans that list it, the lowest UAV id first; each plan's order is
+  // its vehicle's warm route.
+  for (Route& r : fleet_warm_)
+    r.clear();
+  f.owner.fill(-1);
+  std::array<RobotId, kMaxStops + 1> holder{};
+  holder.fill(0xFFFF);
+  const auto hold = [&](RobotId uav, std::size_t vehicle, std::span<const RobotId> ugvs) {
+    for (const RobotId ugv : ugvs) {
+      for (int k = 1; k <= n; ++k) {
+        if (stop_ugv_[static_cast<std::size_t>(k - 1)] != ugv || uav >= holder[k]) continue;
+        holder[k] = uav;
+        f.owner[k] = static_cast<std::int16_t>(vehicle);
+      }
+    }
+  };
+  hold(config_.id, 0, {plan_ugv_.begin(), plan_ugv_.end()});
+  for (std::size_t v = 1; v <= live.size(); ++v) {
+    const Peer& peer = peers_[live[v - 1]];
+    hold(live[v - 1], v, {peer.claims.begin(), peer.claims.end()});
+  }
+  for (std::size_t v = 0; v <= live.size(); ++v) {
+    const auto& ugvs = v == 0 ? plan_ugv_ : peers_[live[v - 1]].claims;
+    for (const RobotId ugv : ugvs) {
+      for (int k = 1; k <= n; ++k) {
+        if (stop_ugv_[static_cast<std::size_t>(k - 1)] == ugv && f.owner[k] == static_cast<int>(v))
+          (void)fleet_warm_[v].push_back(static_cast<std::uint8_t>(k));
+      }
+    }
+  }
+  const FleetResult& r = fleet_.solve(f, &fleet_warm_);
+  const Route& mine = r.routes[0];
+  const bool same = std::equal(mine.begin(), mine.end(), warm_.begin(), warm_.end());
+  const std::uint32_t age = same ? schedule_.age_steps + 1 : 0;
+  schedule_ = ScheduleResult{};
+  schedule_.order = mine;
+  schedule_.cost = evaluate_route(f, 0, {mine.begin(), mine.end()}, schedule_.arrival.data());
+  schedule_.exact = r.exact;
+  schedule_.age_steps = age;
+  ++health_.fleet_schedules;
 }
 
 bool UavSupervisorTask::choose_target(TimePoint now, Vec2& target) {
@@ -477,6 +595,7 @@ void UavSupervisorTask::relay_nearby(TimePoint now) {
 void UavSupervisorTask::scheduling_step(TimePoint now) {
   read_requests(now);
   read_statuses(now);
+  read_peers(now);
   relay_nearby(now);
   StampCounters stamps = odometry_stamps_.counters();
   stamps += camera_stamps_.counters();
@@ -487,13 +606,20 @@ void UavSupervisorTask::scheduling_step(TimePoint now) {
   health_.stamps = stamps;
   if (!have_state_) return;
   const int previous_first = schedule_.order.empty() ? -1 : stop_ugv_[schedule_.order[0] - 1u];
+  const StaticVector<RobotId, kMaxStops> held = plan_ugv_;
   solve(now);
   const int first = schedule_.order.empty() ? -1 : stop_ugv_[schedule_.order[0] - 1u];
+  // With other UAVs, what this one holds is news at once (they plan around it).
+  const bool peers =
+      std::any_of(peers_.begin(), peers_.end(), [](const Peer& p) { return p.live; });
+  const bool changed =
+      previous_first != first ||
+      (peers && !std::equal(held.begin(), held.end(), plan_ugv_.begin(), plan_ugv_.end()));
   Vec2 target;
   if (!choose_target(now, target)) {
     mode_ = UavMode::kIdle;
     ++health_.mode_steps[static_cast<std::size_t>(mode_)];
-    publish_plan(now, previous_first != first);
+    publish_plan(now, changed);
     return;
   }
   const Vec2 here = state_.pose.p.head<2>();
@@ -536,7 +662,7 @@ void UavSupervisorTask::scheduling_step(TimePoint now) {
     flight_.set_target(target, now, here, flight_layer_);
   }
   ++health_.mode_steps[static_cast<std::size_t>(mode_)];
-  publish_plan(now, previous_first != first);
+  publish_plan(now, changed);
 }
 
 }  // namespace colag::uav

@@ -2,11 +2,16 @@
 // Support scheduling for several UAVs: every live request is served by one of them, each UAV
 // flying its own stops in its own order: a vehicle-routing problem with time windows for K
 // vehicles, open routes, each vehicle starting where its UAV is, with its own first legs.
-// Objective, lexicographic as for one UAV (scheduler.hpp): total weighted lateness plus
-// `switch_cost_s` for every stop taken from the vehicle that held it in the last plan, then total
-// travel. The switch cost keeps assignments stable: a stop moves to another vehicle only if that
-// saves more than switch_cost_s of waiting, so no stop moves while the plan is on time, and two
-// UAVs never hand a UGV back and forth on noise. A stop whose vehicle is gone is free.
+// Objective, lexicographic as for one UAV (scheduler.hpp): total weighted lateness, then total
+// travel; plus `switch_cost_s` for every stop taken from the vehicle that held it in the last
+// plan. The switch cost keeps assignments stable (two UAVs do not hand a UGV back and forth on
+// noise); where it counts depends on the last plan:
+// - on time: on the travel. A stop moves only to shorten the flying by more than switch_cost_s,
+//   or to keep a deadline. (On the waiting it would forbid every move of a plan on time: a UAV
+//   that took every request before it heard the others would keep them all.)
+// - late: on the waiting. A stop moves only to save more than switch_cost_s of waiting (on the
+//   travel, any gain in waiting, however small, would move it, and noise moves it back).
+// A stop whose vehicle is gone is free.
 // Solvers, both with static memory and bounded time:
 // - exact, n <= exact_max_stops: every vehicle's best route over every subset of the stops (the
 //   single-vehicle DP, Scheduler::subset_costs), then the best split of the stops among the
@@ -18,6 +23,7 @@
 #include <cstdint>
 
 #include "colag/common/limits.hpp"
+#include "colag/common/random.hpp"
 #include "colag/common/static_vector.hpp"
 #include "colag/uav/scheduler.hpp"
 
@@ -39,8 +45,8 @@ struct FleetProblem {
   std::array<double, kMaxStops + 1> due{};
   std::array<double, kMaxStops + 1> weight = detail::ones();  // see ScheduleProblem
   // The vehicle that held stop j in the last plan; -1: none (new, or its vehicle is gone).
-  std::array<std::int8_t, kMaxStops + 1> owner = [] {
-    std::array<std::int8_t, kMaxStops + 1> a{};
+  std::array<std::int16_t, kMaxStops + 1> owner = [] {
+    std::array<std::int16_t, kMaxStops + 1> a{};
     a.fill(-1);
     return a;
   }();
@@ -56,11 +62,12 @@ struct FleetCost {
 };
 
 struct FleetResult {
-  FleetRoutes routes;                                // per vehicle
-  std::array<std::int8_t, kMaxStops + 1> vehicle{};  // per stop: who serves it
-  std::array<double, kMaxStops + 1> arrival{};       // per stop
+  FleetRoutes routes;                                 // per vehicle
+  std::array<std::int16_t, kMaxStops + 1> vehicle{};  // per stop: who serves it
+  std::array<double, kMaxStops + 1> arrival{};        // per stop
   FleetCost cost;
-  bool exact = false;  // proven optimal for the objective
+  bool exact = false;              // proven optimal for the objective
+  bool switch_on_waiting = false;  // the switch cost counted on the waiting (the last plan late)
 };
 
 // Vehicle v flying `route`: its lateness and travel (arrivals per stop into `arrival` if given).
@@ -68,15 +75,15 @@ RouteCost evaluate_route(const FleetProblem& p, int v, std::span<const std::uint
                          double* arrival = nullptr);
 // The whole plan by the objective (routes of vehicles >= p.vehicles must be empty).
 FleetCost evaluate_fleet(const FleetProblem& p, const FleetRoutes& routes);
-// a better than b by the objective.
-bool better(const FleetProblem& p, const FleetCost& a, const FleetCost& b);
+// a better than b by the objective, the switch cost counted on the waiting or on the travel.
+bool better(const FleetProblem& p, const FleetCost& a, const FleetCost& b, bool on_waiting);
 
 struct FleetSchedulerConfig {
   int exact_max_stops = kFleetExactMaxStops;
   // Heuristic effort in route evaluations (one unit per stop looked at), moves between routes and
   // the routes' own search together; about 1 ms on a desktop core, as for one UAV.
   std::uint64_t work_budget = 200'000;
-  int rounds = 3;  // passes of moves between routes, each followed by ordering every route
+  int rounds = 3;  // descents between routes, each followed by ordering every route
   // Each route's ordering gets an equal share of what is left of the budget, at least this.
   std::uint64_t route_budget_min = 5'000;
   // A route is ordered exactly up to this many stops (the DP's time grows as 2^n n^2: at 12 stops
@@ -103,12 +110,19 @@ class FleetScheduler {
   // or two stops of two routes exchanged.
   bool relocate_pass(const FleetProblem& p);
   bool swap_pass(const FleetProblem& p);
+  // Two routes exchange their tails (2-opt*): a1 a2, b1 b2 -> a1 b2, b1 a2.
+  bool tails_pass(const FleetProblem& p);
+  void descend(const FleetProblem& p);  // the three passes until none moves a stop
+  // Iterated search on the split: a kick moves 1-2 random stops to random places in other
+  // routes, a descent follows; kept if better, else undone; until `patience` idle kicks or the
+  // budget is spent.
+  void iterate(const FleetProblem& p);
   // Each route by the single-vehicle scheduler; `rounds_left` (this one included) share the
   // budget that is left.
   void order_routes(const FleetProblem& p, int rounds_left);
   // Vehicle v's problem over `stops` (node k: stops[k - 1]), into sub_.
   void route_problem(const FleetProblem& p, int v, std::span<const std::uint8_t> stops);
-  // Route v's objective: its lateness plus its switch cost, its travel (counts work).
+  // Route v's objective: its lateness, its travel plus its switch cost (counts work).
   RouteCost route_cost(const FleetProblem& p, int v, std::span<const std::uint8_t> route);
   void finish(bool exact);
 
@@ -119,7 +133,10 @@ class FleetScheduler {
   FleetResult result_;
   FleetRoutes routes_;
   Route scratch_, other_;
+  FleetRoutes best_;
   std::uint64_t work_ = 0;
+  Rng rng_{0};               // the kicks: reseeded by a cold solve, continued by warm ones
+  bool on_waiting_ = false;  // this solve's switch cost counts on the waiting
   // Exact: per vehicle, the best route over each subset; then the best split.
   static constexpr std::size_t kSubsets = std::size_t{1} << kFleetExactMaxStops;
   std::array<std::array<RouteCost, kSubsets>, kMaxVehicles> subset_{};

@@ -23,6 +23,7 @@
 #include "colag/platform/readers.hpp"
 #include "colag/uav/camera_altitude.hpp"
 #include "colag/uav/clock_server.hpp"
+#include "colag/uav/fleet_scheduler.hpp"
 #include "colag/uav/flight_planner.hpp"
 #include "colag/uav/map_sharer.hpp"
 #include "colag/uav/mapper.hpp"
@@ -43,6 +44,16 @@ struct UavSupervisorConfig {
   SchedulerConfig scheduler;
   TeamFilterConfig team;     // the UGVs' own returns, kept out of the map while they are alive
   NearbyRelayConfig nearby;  // which UGVs each UGV hears of, relayed every scheduling step
+  // Several UAVs (beyond the paper): each hears the others' odometry and plans. The live
+  // requests are split among the UAVs that fly the mission (FleetScheduler: a stop leaves the UAV
+  // whose plan holds it only when that saves more than fleet_switch_cost_s of waiting; two plans
+  // holding one UGV: the lower UAV id keeps it), each UAV flying its own share. A UAV not heard
+  // for peer_timeout, or whose flight controller left the mission, is gone: its UGVs are taken
+  // over. Alone, the single-UAV scheduler above plans as in the paper.
+  FleetSchedulerConfig fleet;
+  double fleet_switch_cost_s = 2.0;
+  Duration peer_timeout = std::chrono::seconds(2);
+  RobotId time_server = 0;  // the UAV whose clock is fleet time: only it answers clock requests
   // The paper's fallback when no order meets every deadline: plan as if v_max were 1.5x, 2.25x,
   // ... higher until one does (up to 100 times). Off: minimise total lateness instead.
   bool vmax_escalation = false;
@@ -115,6 +126,9 @@ struct UavHealth {
   std::uint64_t schedules = 0;
   std::uint64_t schedules_exact = 0;
   std::uint32_t plan_age_max = 0;  // most scheduling steps one plan stood unchanged (warm starts)
+  std::uint64_t fleet_schedules = 0;  // schedules shared with other UAVs
+  std::uint64_t peers_lost = 0;       // other UAVs gone (silent or out of the mission)
+  std::uint64_t peer_messages_rejected = 0;
   std::uint64_t hover_timeouts = 0;
   // Scheduling steps spent in each UavMode (idle, transit, hover, scout): where its time goes.
   std::array<std::uint64_t, static_cast<std::size_t>(UavMode::kScout) + 1> mode_steps{};
@@ -190,7 +204,10 @@ class UavSupervisorTask {
 
   void read_requests(TimePoint now);
   void read_statuses(TimePoint now);
+  void read_peers(TimePoint now);
   void solve(TimePoint now);
+  // The stops split with the live peers (`live`: their ids); this UAV's share into schedule_.
+  void solve_with_peers(std::span<const RobotId> live);
   bool choose_target(TimePoint now, Vec2& target);
   bool choose_scout_point(TimePoint now, Vec2& target);
   void keep_map_window();
@@ -235,6 +252,21 @@ class UavSupervisorTask {
   StaticVector<RobotId, kMaxStops> stop_ugv_;   // schedule node k -> UGV id
   StaticVector<RobotId, kMaxStops> plan_ugv_;   // the last plan's order, as UGV ids (warm start)
   StaticVector<std::uint8_t, kMaxStops> warm_;  // that order in this step's stop numbers
+  // The other UAVs: where they fly, whether they fly the mission, which UGVs their plans hold.
+  struct Peer {
+    bool known = false;
+    bool live = false;  // as the last scheduling step found it
+    TimePoint heard{};
+    Vec2 p = Vec2::Zero(), v = Vec2::Zero();
+    msg::UavFlight flight = msg::UavFlight::kInControl;
+    StaticVector<RobotId, kMaxStops> claims;  // its last plan's UGVs, in its order
+  };
+  platform::QueueReader<msg::UavOdometry, 8 * limits::kMaxUavs> peer_odometry_in_;
+  platform::QueueReader<msg::SupportPlan, 2 * limits::kMaxUavs> peer_plans_in_;
+  std::array<Peer, limits::kMaxUavs> peers_{};
+  FleetScheduler fleet_;
+  FleetProblem fleet_problem_;
+  FleetRoutes fleet_warm_;
   std::array<Request, limits::kMaxUgvs> requests_{};
   std::array<Ugv, limits::kMaxUgvs> ugvs_{};
   int target_ugv_ = -1;  // UGV whose support or scouting point we fly to, -1: none
