@@ -23,6 +23,7 @@ MapStore::MapStore(const MapStoreConfig& config) : config_(config) {
   make_disc(config_.plan_inflation_m, plan_disc_);
   make_disc(config_.predict_inflation_m, predict_disc_);
   state_.fill(CellState::kUnknown);
+  source_.fill(0);
   recount();
 }
 
@@ -67,6 +68,7 @@ Status MapStore::move_to(const Vec2& origin) {
   if (dx == 0 && dy == 0) return Status::ok();
   const int nx = g.cells_x(), ny = g.cells_y();
   shift_layer(state_.data(), nx, ny, dx, dy, CellState::kUnknown);
+  shift_layer(source_.data(), nx, ny, dx, dy, std::uint8_t{0});
   // On the lattice exactly (the caller's origin may be a rounding away from it).
   geometry_ = GridGeometry2d(g.origin_x() + dx * g.resolution(), g.origin_y() + dy * g.resolution(),
                              g.resolution(), nx, ny);
@@ -174,9 +176,16 @@ Status MapStore::apply(const msg::MapPatch& patch) {
   if (x0 >= x1 || y0 >= y1) return reject({Errc::kOutOfRange, "map patch: outside the map"});
   if (Status s = decode_patch(patch, scratch_); !s) return reject(s);
 
+  const auto source = static_cast<std::uint8_t>(std::min<unsigned>(patch.uav_id, 0xFF));
   for (int y = y0; y < y1; ++y) {
-    for (int x = x0; x < x1; ++x)
-      set_cell({x, y}, scratch_.at(x - o.x, y - o.y));
+    for (int x = x0; x < x1; ++x) {
+      const CellState s = scratch_.at(x - o.x, y - o.y);
+      const std::size_t i = g.index(CellIndex{x, y});
+      if (s == CellState::kUnknown && state_[i] != CellState::kUnknown && source_[i] != source)
+        continue;  // another UAV knows it
+      set_cell({x, y}, s);
+      source_[i] = source;
+    }
   }
   ++counters_.patches_applied;
   return Status::ok();

@@ -132,6 +132,10 @@ int run(int argc, char** argv) {
       ->transform(
           CLI::CheckedTransformer(std::map<std::string, bool>{{"on", true}, {"off", false}}))
       ->default_str("off");
+  app.add_option("--uavs", cfg.uavs,
+                 "UAVs sharing the support (beyond the paper): each serves the UGVs it is best "
+                 "placed for; one that is lost has its UGVs taken over")
+      ->check(CLI::Range(1, static_cast<int>(limits::kMaxUavs)));
   app.add_option("--threads", cfg.threads,
                  "cores the simulation may use (the results are the same for any number)")
       ->check(CLI::Range(1, 8));
@@ -155,6 +159,11 @@ int run(int argc, char** argv) {
       ->add_option("--base-fault-at", cfg.faults.base_fault_at_s,
                    "UGV 0's base faults at this time, s (--ugv-base: an ODrive motor error, an "
                    "AgileX e-stop, our controller silent); UGV 0 must stop and stay stopped")
+      ->check(sim::positive_up_to(1e6));
+  faults
+      ->add_option("--uav-lost-at", cfg.faults.uav_lost_at_s,
+                   "the last UAV's board dies at this time, s: it stops and falls silent (with "
+                   "--uavs 2+ the others take its UGVs over)")
       ->check(sim::positive_up_to(1e6));
   // Clocks: every robot keeps its own (fleet time is the UAV's; the UGVs learn it over DDS).
   std::string clock_step;

@@ -33,8 +33,9 @@ class View {
     for (const auto& route : t.vias)
       for (const Vec2& v : route)
         take(v);
-    for (const Vec2& p : t.uav_path)
-      take(p);
+    for (const auto& path : t.uav_paths)
+      for (const Vec2& p : path)
+        take(p);
     lo_ -= Vec2(1.0, 1.0);
     hi_ += Vec2(1.0, 1.0);
     scale_ = 800.0 / std::max(hi_.x() - lo_.x(), hi_.y() - lo_.y());
@@ -110,8 +111,9 @@ bool draw_mission(const mission::MissionTrace& t, const mission::MissionOutcome&
                   px(b.center + Vec2(b.half_size.x(), -b.half_size.y())), cv::Scalar(70, 70, 70),
                   cv::FILLED);
   }
-  for (std::size_t i = 1; i < t.uav_path.size(); ++i) {
-    cv::line(img, px(t.uav_path[i - 1]), px(t.uav_path[i]), cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+  for (const auto& flown : t.uav_paths) {  // each UAV's, in black
+    for (std::size_t i = 1; i < flown.size(); ++i)
+      cv::line(img, px(flown[i - 1]), px(flown[i]), cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
   }
   for (std::size_t u = 0; u < t.ugv_paths.size(); ++u) {
     const cv::Scalar c = colour(u);

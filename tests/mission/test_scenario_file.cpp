@@ -156,6 +156,26 @@ TEST(ScenarioFile, FaultWindowsAndWheelBiasReachTheMission) {
   EXPECT_TRUE(check(cfg, error)) << error;
 }
 
+TEST(ScenarioFile, SeveralUavsAndTheLossOfOneReachTheMission) {
+  MissionConfig cfg;
+  std::string error;
+  ASSERT_TRUE(
+      load_scenario_file(test::write_temp_file("uavs.yaml",
+                                               "map: {generator: dense}\nuav: {count: 3}\n"
+                                               "ugvs:\n  - {start: [0, 16, -90], goal: [0, -16]}\n"
+                                               "faults: {uav_lost_at_s: 42}\n"),
+                         cfg, error))
+      << error;
+  EXPECT_EQ(cfg.uavs, 3);
+  EXPECT_DOUBLE_EQ(cfg.faults.uav_lost_at_s, 42.0);
+  EXPECT_FALSE(load_scenario_file(
+      test::write_temp_file("uavs9.yaml",
+                            "map: {generator: dense}\nuav: {count: 9}\n"
+                            "ugvs:\n  - {start: [0, 16, -90], goal: [0, -16]}\n"),
+      cfg, error));
+  EXPECT_NE(error.find("uav.count"), std::string::npos) << error;
+}
+
 TEST(ScenarioFile, GeneratorParametersReachTheMap) {
   const std::string one = "ugvs:\n  - {start: [0, 16, -90], goal: [0, -16]}\n";
   MissionConfig cfg;

@@ -11,7 +11,7 @@ namespace colag::test {
 
 // Applies patches covering the cells of [x0, x1) x [y0, y1) (world metres).
 inline bool fill_map(MapStore& map, double x0, double y0, double x1, double y1,
-                     const std::function<CellState(const Vec2&)>& state_at) {
+                     const std::function<CellState(const Vec2&)>& state_at, RobotId uav = 0) {
   const auto& g = map.geometry();
   const CellIndex c0 = g.cell_of(Vec2(x0 + 1e-9, y0 + 1e-9));
   const CellIndex c1 = g.cell_of(Vec2(x1 - 1e-9, y1 - 1e-9));
@@ -30,6 +30,7 @@ inline bool fill_map(MapStore& map, double x0, double y0, double x1, double y1,
       msg::MapPatch patch;
       if (!encode_patch(cells, patch)) return false;
       patch.resolution_m = g.resolution();
+      patch.uav_id = uav;
       const Vec2 corner = g.center_of({bx, by}) - Vec2::Constant(0.5 * g.resolution());
       patch.origin_x_m = corner.x();
       patch.origin_y_m = corner.y();

@@ -70,6 +70,23 @@ TEST_F(MapStoreTest, MergesAPatchAndInflatesBothViews) {
   EXPECT_FALSE(map->plan_blocked(Vec2(2.95, 0)));
 }
 
+// Two UAVs' patches: what one knows, the other's unknown does not erase; a UAV may take back its
+// own word, and either may change a known cell to another known state.
+TEST_F(MapStoreTest, AUavsUnknownCellsDoNotEraseWhatAnotherUavMadeKnown) {
+  const auto all = [](CellState s) { return [s](const Vec2&) { return s; }; };
+  ASSERT_TRUE(test::fill_map(*map, 0, 0, 2, 2, all(CellState::kFree), 0));
+  ASSERT_TRUE(test::fill_map(*map, 1, 0, 3, 2, all(CellState::kUnknown), 1));  // UAV 1: no idea
+  EXPECT_EQ(map->state(g.cell_of(Vec2(1.5, 1))), CellState::kFree);            // UAV 0's stands
+  EXPECT_EQ(map->state(g.cell_of(Vec2(2.5, 1))), CellState::kUnknown);
+  EXPECT_FALSE(map->predict_blocked(Vec2(1.0, 1.0)));
+  ASSERT_TRUE(test::fill_map(*map, 1, 0, 2, 2, all(CellState::kOccupied), 1));  // UAV 1 sees it
+  EXPECT_EQ(map->state(g.cell_of(Vec2(1.5, 1))), CellState::kOccupied);
+  ASSERT_TRUE(test::fill_map(*map, 1, 0, 2, 2, all(CellState::kUnknown), 1));  // and takes it back
+  EXPECT_EQ(map->state(g.cell_of(Vec2(1.5, 1))), CellState::kUnknown);
+  ASSERT_TRUE(test::fill_map(*map, 0, 0, 1, 2, all(CellState::kUnknown), 0));  // UAV 0 too
+  EXPECT_EQ(map->state(g.cell_of(Vec2(0.5, 1))), CellState::kUnknown);
+}
+
 // Inside the grid and at its corner, where the inflation discs are cut by the edges.
 TEST_F(MapStoreTest, IncrementalViewsEqualARecomputationAfterRandomPatches) {
   for (const double corner : {-2.0, -20.0}) {

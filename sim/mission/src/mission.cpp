@@ -173,8 +173,59 @@ std::vector<sim::ClockModel> draw_clocks(const MissionConfig& cfg) {
   return out;
 }
 
-// Each robot's port on the simulated network: UGV i's is i, the UAV's the last.
-constexpr std::size_t kUavPort = platform::LoopbackTransport::kParticipants - 1;
+// Each robot's port on the simulated network: UGV i's is i, UAV k's the k-th from the end.
+constexpr std::size_t uav_port(std::size_t k) {
+  return platform::LoopbackTransport::kParticipants - 1 - k;
+}
+
+// Where UAV k of `cfg.uavs` starts: one alone at cfg.uav_start; several spread evenly over the
+// span of the UGVs' starts (each over its own part of the line), at uav_start's y and height.
+Vec3 uav_start_of(const MissionConfig& cfg, int k) {
+  if (cfg.uavs <= 1) return cfg.uav_start;
+  double lo = ugv_start(cfg, 0).p.x(), hi = lo;
+  for (int i = 1; i < cfg.ugvs; ++i) {
+    lo = std::min(lo, ugv_start(cfg, i).p.x());
+    hi = std::max(hi, ugv_start(cfg, i).p.x());
+  }
+  const double x = lo + (k + 0.5) / cfg.uavs * (hi - lo);
+  return {x, cfg.uav_start.y(), cfg.uav_start.z()};
+}
+
+// A loop that stops when its robot's board dies (FaultConfig::uav_lost_at_s).
+class Mortal final : public platform::Task {
+ public:
+  Mortal(platform::Task& inner, const bool& dead) : inner_(inner), dead_(dead) {}
+  const char* name() const override { return inner_.name(); }
+  Status init(TimePoint now) override { return inner_.init(now); }
+  void step(TimePoint now) override {
+    if (!dead_) inner_.step(now);
+  }
+  void on_overrun(Duration d) override { inner_.on_overrun(d); }
+
+ private:
+  platform::Task& inner_;
+  const bool& dead_;
+};
+
+// FaultConfig::uav_lost_at_s: the last UAV's board dies (its loops stop, its body and devices
+// fall silent).
+class UavLossWatch final : public platform::Task {
+ public:
+  UavLossWatch(sim::SimWorld& world, int uav, double at_s)
+      : world_(world), uav_(uav), at_(TimePoint{} + seconds(at_s)) {}
+  const char* name() const override { return "uav_loss"; }
+  void step(TimePoint now) override {
+    if (dead || now < at_) return;
+    world_.silence_uav(uav_);
+    dead = true;
+  }
+  bool dead = false;
+
+ private:
+  sim::SimWorld& world_;
+  int uav_;
+  TimePoint at_;
+};
 
 // After the UGV lanes ran: their samples go onto the bus in lane order, as if the UGVs' tasks
 // had run one after the other.
@@ -301,7 +352,9 @@ struct Mission::Parts {
   std::unique_ptr<StillWatch> still;
   std::unique_ptr<BaseFaultWatch> base_fault;
   std::unique_ptr<platform::TransportPump> pump;
-  std::unique_ptr<uav::UavSupervisorTask> uav;
+  std::vector<std::unique_ptr<uav::UavSupervisorTask>> uavs;
+  std::unique_ptr<UavLossWatch> uav_loss;
+  std::vector<std::unique_ptr<Mortal>> mortals;
   std::unique_ptr<ReferenceFrameTask> reference;
   std::vector<UgvStack> ugvs;
   std::vector<sim::ClockModel> clocks;  // the UAV's, then each UGV's
@@ -324,8 +377,11 @@ const MissionConfig& Mission::config() const {
 const sim::SimWorld& Mission::world() const {
   return *parts_->world;
 }
-const uav::UavSupervisorTask* Mission::uav() const {
-  return parts_->uav.get();
+const uav::UavSupervisorTask* Mission::uav(std::size_t k) const {
+  return k < parts_->uavs.size() ? parts_->uavs[k].get() : nullptr;
+}
+std::size_t Mission::uav_count() const {
+  return parts_->uavs.size();
 }
 std::size_t Mission::ugv_count() const {
   return parts_->ugvs.size();
@@ -361,22 +417,26 @@ std::unique_ptr<Mission> Mission::compose(const MissionConfig& cfg, std::string&
   Status st = p->ex->add({p->pump.get(), 10ms, 2ms});
   if (st) st = p->ex->add({p->world_task.get(), 20ms, 20ms});
 
-  // The UAV (not in the self-perception baseline).
+  // The UAVs (not in the self-perception baseline).
   if (!cfg.self_perception) {
-    p->world->add_uav(cfg.uav_start, p->clocks[0]);
-    uav::UavSupervisorConfig uc;
-    if (cfg.ablation == Ablation::kNoScheduling)
-      uc.scheduler.mode = uav::ScheduleMode::kNoScheduling;
-    if (cfg.ablation == Ablation::kNoTimeWindows)
-      uc.scheduler.mode = uav::ScheduleMode::kNoTimeWindows;
-    uc.scouting = cfg.scouting;
-    uc.lidar_pattern = beam_pattern_of(wc.lidar);
-    uc.camera_view = camera_view_of(wc.camera);
-    sim::SimWorld& w = *p->world;
-    p->uav = std::make_unique<uav::UavSupervisorTask>(
-        uc, p->bus->port(kUavPort), w.uav(), w.uav_lidar(), w.uav_camera(), w.uav(), p->pool.get());
+    for (int k = 0; k < cfg.uavs; ++k) {
+      p->world->add_uav(uav_start_of(cfg, k), p->clocks[0]);
+      uav::UavSupervisorConfig uc;
+      uc.id = static_cast<RobotId>(k);
+      if (cfg.ablation == Ablation::kNoScheduling)
+        uc.scheduler.mode = uav::ScheduleMode::kNoScheduling;
+      if (cfg.ablation == Ablation::kNoTimeWindows)
+        uc.scheduler.mode = uav::ScheduleMode::kNoTimeWindows;
+      uc.scouting = cfg.scouting;
+      uc.lidar_pattern = beam_pattern_of(wc.lidar);
+      uc.camera_view = camera_view_of(wc.camera);
+      sim::SimWorld& w = *p->world;
+      p->uavs.push_back(std::make_unique<uav::UavSupervisorTask>(
+          uc, p->bus->port(uav_port(static_cast<std::size_t>(k))), w.uav(k), w.uav_lidar(k),
+          w.uav_camera(k), w.uav(k), p->pool.get()));
+    }
   } else {
-    p->reference = std::make_unique<ReferenceFrameTask>(p->bus->port(kUavPort));
+    p->reference = std::make_unique<ReferenceFrameTask>(p->bus->port(uav_port(0)));
   }
 
   // The UGVs, each behind its own CAN link, each publishing through its own outbox: a UGV's
@@ -440,7 +500,20 @@ std::unique_ptr<Mission> Mission::compose(const MissionConfig& cfg, std::string&
         std::make_unique<BaseFaultWatch>(*p->world, p->ugvs.front(), cfg.faults.base_fault_at_s);
     if (st) st = p->ex->add({p->base_fault.get(), 20ms, 1ms});
   }
-  if (p->uav && st) st = add_rows(p->uav->rows(), p->clocks[0]);
+  if (cfg.faults.uav_lost_at_s >= 0.0 && !p->uavs.empty()) {
+    p->uav_loss = std::make_unique<UavLossWatch>(*p->world, cfg.uavs - 1, cfg.faults.uav_lost_at_s);
+    if (st) st = p->ex->add({p->uav_loss.get(), 20ms, 1ms});
+  }
+  for (std::size_t k = 0; k < p->uavs.size() && st; ++k) {
+    auto rows = p->uavs[k]->rows();
+    if (p->uav_loss && k + 1 == p->uavs.size()) {
+      for (platform::TaskEntry& e : rows) {  // the one that will die
+        p->mortals.push_back(std::make_unique<Mortal>(*e.task, p->uav_loss->dead));
+        e.task = p->mortals.back().get();
+      }
+    }
+    st = add_rows(rows, p->clocks[0]);
+  }
   if (p->reference && st) st = p->ex->add(on_clock({p->reference.get(), 20ms, 1ms}, p->clocks[0]));
   for (int i = 0; i < cfg.ugvs && st; ++i) {
     UgvStack& s = p->ugvs[static_cast<std::size_t>(i)];
@@ -564,8 +637,11 @@ void Mission::fly(MissionTrace* trace, MissionWatcher* watcher) {
         }
       }
     }
-    if (trace != nullptr && p.uav && tick % 5 == 0)
-      trace->uav_path.push_back(p.world->uav().state().pose.p.head<2>());
+    if (trace != nullptr && tick % 5 == 0) {
+      trace->uav_paths.resize(p.uavs.size());
+      for (std::size_t k = 0; k < p.uavs.size(); ++k)
+        trace->uav_paths[k].push_back(p.world->uav(static_cast<int>(k)).state().pose.p.head<2>());
+    }
     if (cfg.progress && tick % 10 == 0) cfg.progress(t / cfg.max_time_s);
     if (all_done) break;
   }
@@ -603,35 +679,37 @@ MissionOutcome Mission::collect(MissionTrace* trace) const {
     if (!o.reached) o.reach_time_s = -1.0;
   }
   summarise(*p.world, out);
-  if (out.sim_time_s > 0.0) {
+  if (out.sim_time_s > 0.0) {  // per UAV (the first's)
     out.uav_bytes_in_per_s =
-        static_cast<double>(p.bus->traffic(kUavPort).bytes_in) / out.sim_time_s;
+        static_cast<double>(p.bus->traffic(uav_port(0)).bytes_in) / out.sim_time_s;
     out.uav_bytes_out_per_s =
-        static_cast<double>(p.bus->traffic(kUavPort).bytes_out) / out.sim_time_s;
+        static_cast<double>(p.bus->traffic(uav_port(0)).bytes_out) / out.sim_time_s;
   }
-  if (p.uav) {
-    out.uav_traj_length_m = p.world->uav().travelled_m();
-    out.map_patches = p.uav->sharer().counters().patches;
-    out.map_patch_bytes = p.uav->sharer().counters().bytes;
-    out.schedules = p.uav->health().schedules;
-    out.schedules_exact = p.uav->health().schedules_exact;
-    out.plan_age_max = p.uav->health().plan_age_max;
+  // With several UAVs: their sums (their time in each mode, their flying, their patches, ...).
+  for (std::size_t k = 0; k < p.uavs.size(); ++k) {
+    const uav::UavSupervisorTask& u = *p.uavs[k];
+    out.uav_traj_length_m += p.world->uav(static_cast<int>(k)).travelled_m();
+    out.map_patches += u.sharer().counters().patches;
+    out.map_patch_bytes += u.sharer().counters().bytes;
+    out.schedules += u.health().schedules;
+    out.schedules_exact += u.health().schedules_exact;
+    out.plan_age_max = std::max(out.plan_age_max, u.health().plan_age_max);
     const auto mode_s = [&](uav::UavMode m) {
-      return static_cast<double>(p.uav->health().mode_steps[static_cast<std::size_t>(m)]) *
-             to_seconds(p.uav->config().schedule.scheduling.period);
+      return static_cast<double>(u.health().mode_steps[static_cast<std::size_t>(m)]) *
+             to_seconds(u.config().schedule.scheduling.period);
     };
-    out.uav_idle_s = mode_s(uav::UavMode::kIdle);
-    out.uav_transit_s = mode_s(uav::UavMode::kTransit);
-    out.uav_hover_s = mode_s(uav::UavMode::kHover);
-    out.uav_scout_s = mode_s(uav::UavMode::kScout);
-    out.scout_timeouts = p.uav->health().scout_timeouts;
-    out.team_located = p.uav->team_filter().counters().located;
-    out.team_returns_dropped = p.uav->team_filter().counters().dropped;
+    out.uav_idle_s += mode_s(uav::UavMode::kIdle);
+    out.uav_transit_s += mode_s(uav::UavMode::kTransit);
+    out.uav_hover_s += mode_s(uav::UavMode::kHover);
+    out.uav_scout_s += mode_s(uav::UavMode::kScout);
+    out.scout_timeouts += u.health().scout_timeouts;
+    out.team_located += u.team_filter().counters().located;
+    out.team_returns_dropped += u.team_filter().counters().dropped;
   }
   if (trace != nullptr) {
     for (const auto& c : p.world->collisions())
       trace->collisions.push_back(c.where);
-    if (p.uav) add_unknown_cells(*p.uav, p.world->world(), *trace);
+    if (!p.uavs.empty()) add_unknown_cells(*p.uavs.front(), p.world->world(), *trace);
   }
   return out;
 }

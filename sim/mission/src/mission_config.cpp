@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-
 #include <cstdlib>
 
 #include "colag/common/limits.hpp"
@@ -122,6 +121,13 @@ bool check(const MissionConfig& cfg, std::string& error) {
   if (cfg.ugvs < 1 || cfg.ugvs > static_cast<int>(limits::kMaxUgvs)) {
     return fail("--ugvs must be in 1.." + std::to_string(limits::kMaxUgvs));
   }
+  if (cfg.uavs < 1 || cfg.uavs > static_cast<int>(limits::kMaxUavs)) {
+    return fail("--uavs must be in 1.." + std::to_string(limits::kMaxUavs));
+  }
+  if (cfg.uavs > 1 && cfg.self_perception)
+    return fail("--uavs: the self-perception baseline has no UAV");
+  if (!std::isfinite(cfg.faults.uav_lost_at_s))
+    return fail("--uav-lost-at must be a number of seconds");
   if (!cfg.placements.empty() && cfg.placements.size() != static_cast<std::size_t>(cfg.ugvs))
     return fail("a start and a goal for each of the " + std::to_string(cfg.ugvs) + " UGVs");
   for (const UgvPlacement& p : cfg.placements)

@@ -111,6 +111,8 @@ void summarise(const sim::SimWorld& world, MissionOutcome& out) {
 std::string to_json(const MissionOutcome& o, bool include_wall_time) {
   nlohmann::ordered_json j;
   j["seed"] = o.config.seed;
+  if (o.config.uavs > 1) j["uavs"] = o.config.uavs;  // one UAV: as before (the paper's)
+  if (o.config.faults.uav_lost_at_s >= 0.0) j["uav_lost_at_s"] = o.config.faults.uav_lost_at_s;
   if (o.config.faults.any()) {
     const FaultConfig& f = o.config.faults;
     j["faults"] = {{"loss", f.loss},

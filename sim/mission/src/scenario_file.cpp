@@ -119,7 +119,8 @@ bool load_scenario_file(const std::string& file, MissionConfig& cfg, std::string
   }
 
   const YAML::Node uav = board::child(root, "uav");
-  r.only(uav, "uav", {"start"});
+  r.only(uav, "uav", {"start", "count"});
+  r.get(uav, "uav", "count", c.uavs, 1, static_cast<int>(limits::kMaxUavs));
   double u[3] = {c.uav_start.x(), c.uav_start.y(), c.uav_start.z()};
   const bool uav_given = r.vector(uav, "uav", "start", u, 3);
   if (uav_given) {
@@ -177,7 +178,8 @@ bool load_scenario_file(const std::string& file, MissionConfig& cfg, std::string
   const YAML::Node faults = board::child(root, "faults");
   r.only(faults, "faults",
          {"loss_percent", "latency_ms", "jitter_ms", "blackout", "uav_blackout", "rpe_blackout",
-          "odom_bias_percent"});
+          "odom_bias_percent", "uav_lost_at_s"});
+  r.get(faults, "faults", "uav_lost_at_s", c.faults.uav_lost_at_s, 0.0, 1e6);
   double loss = c.faults.loss * 100.0;
   r.get(faults, "faults", "loss_percent", loss, 0.0, 100.0);
   c.faults.loss = loss / 100.0;

@@ -102,6 +102,16 @@ struct SimWorld::Ugv {
   bool collided = false;
 };
 
+struct SimWorld::Uav {
+  Uav(const UavBodyConfig& c, const Vec3& start, const ClockModel& model)
+      : body(c, start), clock(model) {}
+  UavBody body;
+  ClockModel clock;  // what its devices stamp with
+  std::unique_ptr<ScanDevice> lidar;
+  Camera camera;
+  bool silent = false;
+};
+
 SimWorld::SimWorld(const SimWorldConfig& config, BoxWorld world, const hal::Clock& clock,
                    ForkJoin* fork_join)
     : config_(config),
@@ -110,7 +120,6 @@ SimWorld::SimWorld(const SimWorldConfig& config, BoxWorld world, const hal::Cloc
       clock_(clock),
       fork_join_(fork_join),
       rng_(config.seed) {
-  camera_ = std::make_unique<Camera>();
   collisions_.reserve(64);
 }
 
@@ -126,11 +135,21 @@ int SimWorld::add_ugv(const Pose2& start, const ClockModel& clock, const WheelEr
   return static_cast<int>(ugvs_.size()) - 1;
 }
 
-void SimWorld::add_uav(const Vec3& start, const ClockModel& clock) {
-  uav_clock_ = clock;
-  uav_ = std::make_unique<UavBody>(config_.uav, start);
-  uav_lidar_ = std::make_unique<ScanDevice>(config_.lidar, fork_join_, config_.lidar_errors,
-                                            config_.seed * 7919ULL + 17);
+int SimWorld::add_uav(const Vec3& start, const ClockModel& clock) {
+  const std::uint64_t k = uavs_.size();
+  uavs_.push_back(std::make_unique<Uav>(config_.uav, start, clock));
+  uavs_.back()->lidar = std::make_unique<ScanDevice>(
+      config_.lidar, fork_join_, config_.lidar_errors, config_.seed * 7919ULL + 17 + 1000 * k);
+  return static_cast<int>(k);
+}
+
+void SimWorld::silence_uav(int i) {
+  Uav& u = *uavs_.at(static_cast<std::size_t>(i));
+  u.silent = true;
+  hal::FlightSetpoint hold;  // where it is, still
+  hold.position_m = u.body.state().pose.p;
+  hold.velocity_mps = Vec3::Zero();
+  (void)u.body.send_setpoint(hold);
 }
 
 void SimWorld::enable_ugv_lidars() {
@@ -146,14 +165,17 @@ hal::CanBus& SimWorld::ugv_can(int i) {
 hal::Lidar& SimWorld::ugv_lidar(int i) {
   return *ugvs_.at(static_cast<std::size_t>(i))->lidar;
 }
-UavBody& SimWorld::uav() {
-  return *uav_;
+UavBody& SimWorld::uav(int i) {
+  return uavs_.at(static_cast<std::size_t>(i))->body;
 }
-hal::Lidar& SimWorld::uav_lidar() {
-  return *uav_lidar_;
+const UavBody* SimWorld::uav_body(int i) const {
+  return i >= 0 && i < uav_count() ? &uavs_[static_cast<std::size_t>(i)]->body : nullptr;
 }
-hal::RelativePoseSensor& SimWorld::uav_camera() {
-  return *camera_;
+hal::Lidar& SimWorld::uav_lidar(int i) {
+  return *uavs_.at(static_cast<std::size_t>(i))->lidar;
+}
+hal::RelativePoseSensor& SimWorld::uav_camera(int i) {
+  return uavs_.at(static_cast<std::size_t>(i))->camera;
 }
 void SimWorld::set_base_fault(int i, bool on) {
   ugvs_[static_cast<std::size_t>(i)]->body.controller().set_fault(on);
@@ -164,7 +186,7 @@ const UgvBody& SimWorld::ugv(int i) const {
 }
 const OdometryFrame& SimWorld::odometry_frame() const {
   static const OdometryFrame kWorld;
-  return uav_ ? uav_->odometry_frame() : kWorld;
+  return uavs_.empty() ? kWorld : uavs_.front()->body.odometry_frame();
 }
 double SimWorld::min_clearance_m(int i) const {
   return ugvs_.at(static_cast<std::size_t>(i))->min_clearance;
@@ -196,9 +218,9 @@ void SimWorld::update_scene() {
   }
 }
 
-void SimWorld::detect(TimePoint now) {
-  camera_->frame.clear();
-  const Pose3& cam = uav_->state().pose;
+void SimWorld::detect(Uav& uav, TimePoint now) {
+  uav.camera.frame.clear();
+  const Pose3& cam = uav.body.state().pose;
   const CameraConfig& c = config_.camera;
   for (std::size_t i = 0; i < ugvs_.size(); ++i) {
     const Pose2& g = ugvs_[i]->body.pose();
@@ -232,7 +254,7 @@ void SimWorld::detect(TimePoint now) {
     d.ugv_in_uav.q = (truth.q * quat_from_yaw(yaw_error)).normalized();
     const double sp = c.sigma_position_m * c.sigma_position_m;
     d.covariance = Eigen::Vector4d(sp, sp, sp, c.sigma_yaw_rad * c.sigma_yaw_rad).asDiagonal();
-    (void)camera_->frame.push_back(d);
+    (void)uav.camera.frame.push_back(d);
   }
 }
 
@@ -266,13 +288,19 @@ void SimWorld::watch_collisions(TimePoint now) {
 void SimWorld::step(TimePoint now, double dt) {
   for (auto& u : ugvs_)
     u->body.step(u->clock.now(), dt, u->link.motor());
-  const TimePoint uav_now = uav_clock_.local(now);  // what the UAV's devices stamp with
-  if (uav_) uav_->step(uav_now, dt);
+  for (std::size_t k = 0; k < uavs_.size(); ++k) {
+    Uav& u = *uavs_[k];
+    if (k > 0) u.body.use_frame(uavs_.front()->body.odometry_frame());  // one map frame
+    // A silent UAV's body holds still; its odometry is not read any more.
+    u.body.step(u.clock.local(now), dt);
+  }
   watch_collisions(now);
   if (now >= next_scan_) {
     next_scan_ = now + config_.lidar_period;
     update_scene();
-    if (uav_) uav_lidar_->scan(scene_, uav_->state().pose, uav_now);
+    for (auto& u : uavs_) {
+      if (!u->silent) u->lidar->scan(scene_, u->body.state().pose, u->clock.local(now));
+    }
     for (auto& u : ugvs_) {
       if (!u->lidar) continue;
       const Pose2& g = u->body.pose();
@@ -281,16 +309,21 @@ void SimWorld::step(TimePoint now, double dt) {
                      now);
     }
   }
-  if (uav_ && now >= next_frame_) {
+  if (!uavs_.empty() && now >= next_frame_) {
     next_frame_ = now + config_.camera.period;
     update_scene();
-    detect(uav_now);
-    const CameraConfig& c = config_.camera;
-    Duration late = c.latency;
-    if (c.jitter.count() > 0) late += seconds(rng_.uniform(0.0, to_seconds(c.jitter)));
-    camera_->capture(now + late);
+    for (auto& u : uavs_) {
+      if (u->silent) continue;
+      detect(*u, u->clock.local(now));
+      const CameraConfig& c = config_.camera;
+      Duration late = c.latency;
+      if (c.jitter.count() > 0) late += seconds(rng_.uniform(0.0, to_seconds(c.jitter)));
+      u->camera.capture(now + late);
+    }
   }
-  if (uav_) camera_->deliver(now);
+  for (auto& u : uavs_) {
+    if (!u->silent) u->camera.deliver(now);
+  }
 }
 
 }  // namespace colag::sim

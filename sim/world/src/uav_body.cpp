@@ -36,7 +36,7 @@ void UavBody::step(TimePoint now, double dt) {
     pending_.push_overwrite(state_);
     return;
   }
-  frame_.step(dt);
+  if (!borrowed_frame_) frame_.step(dt);  // a borrowed one is stepped by its owner
   hal::UavState measured = state_;
   measured.pose.p = frame_.to_odometry(state_.pose.p);
   measured.pose.q = frame_.turn() * state_.pose.q;

@@ -10,10 +10,10 @@ namespace colag::limits {
 
 // --- Robots -----------------------------------------------------------------------------------
 inline constexpr std::size_t kMaxUgvs = 32;
-inline constexpr std::size_t kMaxUavs = 4;               // UAVs sharing the support of one fleet
-inline constexpr std::size_t kMaxRobots = kMaxUgvs + 1;  // + the UAV
-inline constexpr std::size_t kMaxSupportRequests = 64;   // live CollisionInfo requests at the UAV
-inline constexpr std::size_t kMaxNearbyUgvs = 12;        // other UGVs the UAV relays to one UGV
+inline constexpr std::size_t kMaxUavs = 4;  // UAVs sharing the support of one fleet
+inline constexpr std::size_t kMaxRobots = kMaxUgvs + kMaxUavs;
+inline constexpr std::size_t kMaxSupportRequests = 64;  // live CollisionInfo requests at the UAV
+inline constexpr std::size_t kMaxNearbyUgvs = 12;       // other UGVs the UAV relays to one UGV
 
 // --- World grids (UAV 3-D map, UGV 2-D map) ----------------------------------------------------
 inline constexpr double kGridResolution_m = 0.1;

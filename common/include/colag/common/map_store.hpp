@@ -42,7 +42,9 @@ class MapStore {
 
   // Validates the whole patch (geometry, payload) before touching the map: a bad patch is
   // rejected and counted, never half-applied. A patch reaching past the window's edge is applied
-  // where the window holds it; one wholly outside is refused.
+  // where the window holds it; one wholly outside is refused. Several UAVs (patch.uav_id): a
+  // patch's unknown cell does not erase a cell another UAV's patch made known (one UAV's map
+  // may not hold yet what another's shows); a UAV may take back its own word.
   Status apply(const msg::MapPatch& patch);
 
   // The window of the site this map holds: limits' size, at kWorldGrid2d's place until moved.
@@ -107,7 +109,8 @@ class MapStore {
   MapStoreConfig config_;
   MapStoreCounters counters_;
   std::array<CellState, limits::kGridCells2d> state_;
-  Counts plan_count_;     // occupied cells within plan_inflation_m
+  std::array<std::uint8_t, limits::kGridCells2d> source_;  // the UAV whose patch set each cell
+  Counts plan_count_;                                      // occupied cells within plan_inflation_m
   Counts near_occupied_;  // occupied cells within predict_inflation_m
   Counts near_unknown_;   // unknown cells within predict_inflation_m (if they block prediction)
   Disc plan_disc_;

@@ -48,7 +48,9 @@ class Mission {
   TimePoint now() const { return executor().now(); }
   const MissionConfig& config() const;
   const sim::SimWorld& world() const;
-  const uav::UavSupervisorTask* uav() const;  // null in the self-perception baseline
+  // UAV k (the first by default); null in the self-perception baseline or past the last.
+  const uav::UavSupervisorTask* uav(std::size_t k = 0) const;
+  std::size_t uav_count() const;
   std::size_t ugv_count() const;
   const ugv::UgvNavTask& ugv(std::size_t i) const;
 

@@ -40,6 +40,9 @@ struct FaultConfig {
   // UGV 0's base reports its own fault at this mission time (< 0: never): an ODrive axis's motor
   // error, an AgileX e-stop, our controller falling silent (what --ugv-base emulates).
   double base_fault_at_s = -1.0;
+  // The last UAV's board dies at this mission time (< 0: never): it stops where it is and falls
+  // silent; the other UAVs take its UGVs over (with several UAVs).
+  double uav_lost_at_s = -1.0;
   bool any() const {
     return loss > 0.0 || latency_ms > 0.0 || jitter_ms > 0.0 || !blackout.empty() ||
            !uav_blackout.empty() || !rpe_blackout.empty() || odom_bias != 0.0;
@@ -79,6 +82,10 @@ struct MissionConfig {
   // Each UGV's start and goal (a scenario file's), `ugvs` of them; empty: the paper's layout.
   std::vector<UgvPlacement> placements;
   Vec3 uav_start = Vec3(0.0, 15.0, 1.0);
+  // UAVs (beyond the paper: several split the support), 1 .. limits::kMaxUavs. With more than
+  // one they start spread over the UGVs' start line at uav_start's height and y, in one map frame
+  // and on one clock (their boards synchronised among themselves).
+  int uavs = 1;
   std::string scenario_file;  // where the above came from, if from a file (for the JSON)
   std::uint64_t seed = 1;
   Ablation ablation = Ablation::kNone;

@@ -138,8 +138,8 @@ struct MissionTrace {
   std::vector<std::vector<Sample>> ugv_paths;
   std::vector<std::vector<EllipseMark>> ugv_ellipses;
   std::vector<Vec2> goals;
-  std::vector<std::vector<Vec2>> vias;  // each UGV's route points before its goal
-  std::vector<Vec2> uav_path;
+  std::vector<std::vector<Vec2>> vias;       // each UGV's route points before its goal
+  std::vector<std::vector<Vec2>> uav_paths;  // each UAV's
   std::vector<SupportMark> support_points;
   struct Stop {
     int ugv;

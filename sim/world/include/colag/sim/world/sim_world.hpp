@@ -81,7 +81,12 @@ class SimWorld {
   // `wheels`: this UGV's own (the field world's), over config.ugv.wheel_errors.
   int add_ugv(const Pose2& start, const ClockModel& clock = {},
               const WheelErrors* wheels = nullptr);
-  void add_uav(const Vec3& start, const ClockModel& clock = {});
+  // Returns its index. Several UAVs (beyond the paper) share the first one's odometry frame (one
+  // co-registered map, as a fleet's LiDAR-inertial odometries must be to share their maps).
+  int add_uav(const Vec3& start, const ClockModel& clock = {});
+  int uav_count() const { return static_cast<int>(uavs_.size()); }
+  // Fault injection: UAV i's board dies: it stops where it is, its devices fall silent.
+  void silence_uav(int i);
   void enable_ugv_lidars();  // self-perception baseline
 
   // Advances every body by dt and produces the sensor data due at `now`.
@@ -90,10 +95,10 @@ class SimWorld {
   // HAL devices for the firmware under test.
   hal::CanBus& ugv_can(int i);
   hal::Lidar& ugv_lidar(int i);
-  UavBody& uav();
-  const UavBody* uav_body() const { return uav_.get(); }  // null without a UAV
-  hal::Lidar& uav_lidar();
-  hal::RelativePoseSensor& uav_camera();
+  UavBody& uav(int i = 0);
+  const UavBody* uav_body(int i = 0) const;  // null without that UAV
+  hal::Lidar& uav_lidar(int i = 0);
+  hal::RelativePoseSensor& uav_camera(int i = 0);
 
   // Ground truth.
   const BoxWorld& world() const { return world_; }
@@ -111,9 +116,10 @@ class SimWorld {
 
  private:
   struct Ugv;
+  struct Uav;
   class ScanDevice;
   class Camera;
-  void detect(TimePoint now);
+  void detect(Uav& uav, TimePoint now);
   void watch_collisions(TimePoint now);
   void update_scene();
 
@@ -124,10 +130,7 @@ class SimWorld {
   ForkJoin* fork_join_;
   Rng rng_;
   std::vector<std::unique_ptr<Ugv>> ugvs_;
-  std::unique_ptr<UavBody> uav_;
-  ClockModel uav_clock_;
-  std::unique_ptr<ScanDevice> uav_lidar_;
-  std::unique_ptr<Camera> camera_;
+  std::vector<std::unique_ptr<Uav>> uavs_;
   TimePoint next_scan_{}, next_frame_{};
   std::vector<CollisionEvent> collisions_;
 };

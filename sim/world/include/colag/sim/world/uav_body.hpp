@@ -36,12 +36,19 @@ class UavBody final : public hal::FlightController, public hal::OdometrySource {
   const hal::UavState& state() const { return state_; }  // the truth
   // Its odometry's frame: where the firmware's map, goals and estimates are.
   const OdometryFrame& odometry_frame() const { return frame_; }
+  // Its odometry in another's frame from now on (a fleet's co-registered map); call each step
+  // before step().
+  void use_frame(const OdometryFrame& frame) {
+    frame_ = frame;
+    borrowed_frame_ = true;
+  }
   double travelled_m() const { return travelled_; }
 
  private:
   UavBodyConfig config_;
   hal::UavState state_;  // the truth
   OdometryFrame frame_;
+  bool borrowed_frame_ = false;
   hal::FlightSetpoint setpoint_;
   bool have_setpoint_ = false;
   double travelled_ = 0.0;

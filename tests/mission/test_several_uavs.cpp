@@ -1,0 +1,53 @@
+// Several UAVs (beyond the paper): they split the support, and one that dies mid-mission has its
+// UGVs taken over. Field world: the safety claim is made where the errors are real.
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <string>
+
+#include "colag/sim/mission/mission.hpp"
+#include "colag/sim/mission/world_file.hpp"
+
+using namespace colag;
+using namespace colag::mission;
+
+TEST(SeveralUavs, OneOfTwoDiesMidMissionAndEveryUgvStillReachesSafely) {
+  MissionConfig cfg;
+  cfg.scenario = "dense";
+  cfg.ugvs = 5;
+  cfg.uavs = 2;
+  cfg.seed = 3;
+  cfg.max_time_s = 250;
+  cfg.faults.uav_lost_at_s = 20.0;
+  std::string error;
+  ASSERT_TRUE(world_from_name("field", cfg.world, error)) << error;
+  const std::unique_ptr<Mission> m = Mission::compose(cfg, error);
+  ASSERT_TRUE(m) << error;
+  ASSERT_EQ(m->uav_count(), 2u);
+  m->fly();
+  const MissionOutcome o = m->collect();
+  EXPECT_TRUE(o.all_reached);
+  EXPECT_EQ(o.collisions, 0);
+  for (const UgvOutcome& u : o.ugvs) {
+    EXPECT_TRUE(u.reached) << "UGV " << u.id;
+    EXPECT_GT(u.min_clearance_m, 0.0) << "UGV " << u.id;
+  }
+  // Both served before the loss; UAV 0 saw its peer go and scheduled alone after.
+  EXPECT_GT(m->uav(1)->health().fleet_schedules, 0u);
+  EXPECT_EQ(m->uav(0)->health().peers_lost, 1u);
+  EXPECT_GT(m->uav(0)->health().schedules, m->uav(0)->health().fleet_schedules);
+  EXPECT_GT(o.sim_time_s, 40.0);  // it was lost mid-mission, not at the end
+}
+
+TEST(SeveralUavs, BadCountsAreRefused) {
+  MissionConfig cfg;
+  std::string error;
+  cfg.uavs = 0;
+  EXPECT_FALSE(check(cfg, error));
+  EXPECT_NE(error.find("--uavs"), std::string::npos);
+  cfg.uavs = 5;
+  EXPECT_FALSE(check(cfg, error));
+  cfg.uavs = 2;
+  cfg.self_perception = true;
+  EXPECT_FALSE(check(cfg, error));
+}
