@@ -82,6 +82,7 @@ Aggregate aggregate(const std::vector<Run>& runs, const std::string& key) {
 int run_tables(const TablesOptions& o) {
   std::vector<Config> configs;
   const bool t1 = o.tables == "1" || o.tables == "all", t2 = o.tables == "2" || o.tables == "all";
+  const bool t3 = o.tables == "3" || o.tables == "all";
   if (o.quick) {
     configs = {spec("sparse", 1, "none", false), spec("sparse", 1, "none", true)};
   } else {
@@ -98,6 +99,16 @@ int run_tables(const TablesOptions& o) {
            {"none", "no-rpe", "no-uncertainty", "no-scheduling", "no-time-windows"}) {
         if (t1 && std::string(a) == "none") continue;  // already in Table I (dense/5)
         configs.push_back(spec("dense", 5, a, false));
+      }
+    }
+    if (t3) {  // beyond the paper: several UAVs, scouting (dense 7: one UAV's hardest row)
+      for (int k = 1; k <= 4; ++k) {
+        for (const bool scouting : {false, true}) {
+          Config c = spec("dense", 7, "none", false);
+          c.uavs = k;
+          c.scouting = scouting;
+          if (!(t1 && k == 1 && !scouting)) configs.push_back(c);  // else in Table I
+        }
       }
     }
   }
@@ -118,11 +129,13 @@ int run_tables(const TablesOptions& o) {
 
   // CSV: one row per mission.
   std::ofstream csv(o.csv);
-  csv << "scenario,ugvs,ablation,self_perception,seed,ok,all_reached,collisions,reach_time_s,"
+  csv << "scenario,ugvs,uavs,scouting,ablation,self_perception,seed,ok,all_reached,collisions,"
+         "reach_time_s,"
          "waiting_time_s,"
          "max_waiting_time_s,ugv_traj_length_m,uav_traj_length_m,sim_time_s,realtime_factor\n";
   for (const Run& r : runs) {
-    csv << r.spec.scenario << ',' << r.spec.ugvs << ',' << r.spec.ablation << ','
+    csv << r.spec.scenario << ',' << r.spec.ugvs << ',' << r.spec.uavs << ','
+        << (r.spec.scouting ? "on" : "off") << ',' << r.spec.ablation << ','
         << r.spec.self_perception << ',' << r.seed << ',' << r.ok;
     if (r.ok) {
       const auto& s = r.result["summary"];
@@ -186,6 +199,29 @@ int run_tables(const TablesOptions& o) {
                   num(a.max_waiting.get()).c_str(), num(a.ugv_len.get()).c_str(),
                   num(a.uav_len.get()).c_str(), a.collisions, a.all_reached, a.runs,
                   kTable2.at(ab).c_str());
+    }
+  }
+  if (t3 && !o.quick) {
+    std::printf(
+        "\nTable III (beyond the paper): dense map, 7 UGVs, K UAVs sharing the support, scouting "
+        "off / on\n(averages over the seeds, +- the 95 %% interval of the mean; UAV m: all UAVs' "
+        "flying, summed)\n");
+    std::printf("%-5s %-9s %15s %13s %7s %7s %8s %5s %8s\n", "UAVs", "scouting", "reach", "wait",
+                "max", "UGV m", "UAV m", "coll", "reached");
+    for (int k = 1; k <= 4; ++k) {
+      for (const bool scouting : {false, true}) {
+        Config c = spec("dense", 7, "none", false);
+        c.uavs = k;
+        c.scouting = scouting;
+        const Aggregate a = aggregate(runs, c.key());
+        if (a.runs == 0) continue;
+        std::printf("%-5d %-9s %7s +-%5s %6s +-%4s %7s %7s %8s %5d %4d/%-3d\n", k,
+                    scouting ? "on" : "off", num(a.reach.get()).c_str(),
+                    num(a.reach.half95()).c_str(), num(a.waiting.get()).c_str(),
+                    num(a.waiting.half95()).c_str(), num(a.max_waiting.get()).c_str(),
+                    num(a.ugv_len.get()).c_str(), num(a.uav_len.get()).c_str(), a.collisions,
+                    a.all_reached, a.runs);
+      }
     }
   }
   Mean rt;

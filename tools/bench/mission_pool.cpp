@@ -15,7 +15,8 @@ namespace colag::programs {
 
 std::string MissionSpec::key() const {
   return scenario + "/" + std::to_string(ugvs) + "/" + ablation + (self_perception ? "/sp" : "") +
-         (faults == "none" ? "" : "/" + faults);
+         (faults == "none" ? "" : "/" + faults) +
+         (uavs == 1 ? "" : "/uavs" + std::to_string(uavs)) + (scouting ? "/scouting" : "");
 }
 
 void Mean::add(double v) {
@@ -59,6 +60,8 @@ bool start(MissionRun& r, const std::string& sim, double max_time, int threads) 
                                    "--max-time", std::to_string(max_time),
                                    "--json",     r.json_path};
   if (r.spec.self_perception) args.push_back("--self-perception");
+  if (r.spec.uavs != 1) args.insert(args.end(), {"--uavs", std::to_string(r.spec.uavs)});
+  if (r.spec.scouting) args.insert(args.end(), {"--scouting", "on"});
   args.insert(args.end(), {"--world", r.spec.world});
   args.insert(args.end(), r.spec.fault_args.begin(), r.spec.fault_args.end());
   std::vector<char*> argv;

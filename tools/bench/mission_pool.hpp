@@ -16,6 +16,8 @@ struct MissionSpec {
   std::string faults = "none";          // a label for the fault setting
   std::vector<std::string> fault_args;  // colag_sim's fault options for it
   std::string world = "ideal";          // colag_sim --world
+  int uavs = 1;                         // colag_sim --uavs
+  bool scouting = false;                // colag_sim --scouting on
   std::string key() const;
 };
 
