@@ -81,6 +81,7 @@ FleetScheduler::FleetScheduler(const FleetSchedulerConfig& config)
 
 const FleetResult& FleetScheduler::solve(const FleetProblem& problem, const FleetRoutes* warm) {
   work_ = 0;
+  limit_ = config_.work_budget;
   problem_ = problem;
   FleetProblem& p = problem_;
   p.n = std::clamp(p.n, 0, static_cast<int>(kMaxStops));
@@ -234,7 +235,7 @@ bool FleetScheduler::relocate_pass(const FleetProblem& p) {
   bool moved = false;
   const auto vehicles = static_cast<std::size_t>(p.vehicles);
   for (std::size_t a = 0; a < vehicles; ++a) {
-    for (std::size_t i = 0; i < routes_[a].size() && work_ < config_.work_budget;) {
+    for (std::size_t i = 0; i < routes_[a].size() && work_ < limit_;) {
       Route& from = routes_[a];
       const std::uint8_t s = from[i];
       const RouteCost a_now = route_cost(p, static_cast<int>(a), {from.begin(), from.end()});
@@ -276,29 +277,34 @@ bool FleetScheduler::relocate_pass(const FleetProblem& p) {
   return moved;
 }
 
+bool FleetScheduler::exchange_if_better(const FleetProblem& p, std::size_t a, std::size_t b,
+                                        RouteCost& now) {
+  const RouteCost then = sum(route_cost(p, static_cast<int>(a), {scratch_.begin(), scratch_.end()}),
+                             route_cost(p, static_cast<int>(b), {other_.begin(), other_.end()}));
+  if (!less(then, now)) return false;
+  routes_[a] = scratch_;
+  routes_[b] = other_;
+  now = then;
+  return true;
+}
+
+RouteCost FleetScheduler::pair_cost(const FleetProblem& p, std::size_t a, std::size_t b) {
+  return sum(route_cost(p, static_cast<int>(a), {routes_[a].begin(), routes_[a].end()}),
+             route_cost(p, static_cast<int>(b), {routes_[b].begin(), routes_[b].end()}));
+}
+
 bool FleetScheduler::swap_pass(const FleetProblem& p) {
   bool moved = false;
   const auto vehicles = static_cast<std::size_t>(p.vehicles);
   for (std::size_t a = 0; a < vehicles; ++a) {
     for (std::size_t b = a + 1; b < vehicles; ++b) {
-      Route& ra = routes_[a];
-      Route& rb = routes_[b];
-      const auto ai = static_cast<int>(a), bi = static_cast<int>(b);
-      RouteCost a_now = route_cost(p, ai, {ra.begin(), ra.end()});
-      RouteCost b_now = route_cost(p, bi, {rb.begin(), rb.end()});
-      for (std::size_t i = 0; i < ra.size(); ++i) {
-        for (std::size_t j = 0; j < rb.size() && work_ < config_.work_budget; ++j) {
-          scratch_ = ra;
-          other_ = rb;
+      RouteCost now = pair_cost(p, a, b);
+      for (std::size_t i = 0; i < routes_[a].size(); ++i) {
+        for (std::size_t j = 0; j < routes_[b].size() && work_ < limit_; ++j) {
+          scratch_ = routes_[a];
+          other_ = routes_[b];
           std::swap(scratch_[i], other_[j]);
-          const RouteCost a_then = route_cost(p, ai, {scratch_.begin(), scratch_.end()});
-          const RouteCost b_then = route_cost(p, bi, {other_.begin(), other_.end()});
-          if (!less(sum(a_then, b_then), sum(a_now, b_now))) continue;
-          ra = scratch_;
-          rb = other_;
-          a_now = a_then;
-          b_now = b_then;
-          moved = true;
+          moved = exchange_if_better(p, a, b, now) || moved;
         }
       }
     }
@@ -311,14 +317,12 @@ bool FleetScheduler::tails_pass(const FleetProblem& p) {
   const auto vehicles = static_cast<std::size_t>(p.vehicles);
   for (std::size_t a = 0; a < vehicles; ++a) {
     for (std::size_t b = a + 1; b < vehicles; ++b) {
-      Route& ra = routes_[a];
-      Route& rb = routes_[b];
-      const auto ai = static_cast<int>(a), bi = static_cast<int>(b);
-      RouteCost now =
-          sum(route_cost(p, ai, {ra.begin(), ra.end()}), route_cost(p, bi, {rb.begin(), rb.end()}));
+      const Route& ra = routes_[a];
+      const Route& rb = routes_[b];
+      RouteCost now = pair_cost(p, a, b);
       for (std::size_t i = 0; i <= ra.size(); ++i) {
         for (std::size_t j = 0; j <= rb.size(); ++j) {
-          if (work_ >= config_.work_budget) return moved;
+          if (work_ >= limit_) return moved;
           if (i == ra.size() && j == rb.size()) continue;  // nothing exchanged
           scratch_.clear();
           other_.clear();
@@ -330,13 +334,7 @@ bool FleetScheduler::tails_pass(const FleetProblem& p) {
             (void)other_.push_back(rb[k]);
           for (std::size_t k = i; k < ra.size(); ++k)
             (void)other_.push_back(ra[k]);
-          const RouteCost then = sum(route_cost(p, ai, {scratch_.begin(), scratch_.end()}),
-                                     route_cost(p, bi, {other_.begin(), other_.end()}));
-          if (!less(then, now)) continue;
-          ra = scratch_;
-          rb = other_;
-          now = then;
-          moved = true;
+          moved = exchange_if_better(p, a, b, now) || moved;
         }
       }
     }
@@ -349,7 +347,7 @@ void FleetScheduler::descend(const FleetProblem& p) {
     bool moved = relocate_pass(p);
     moved = swap_pass(p) || moved;
     moved = tails_pass(p) || moved;
-    if (!moved || work_ >= config_.work_budget) return;
+    if (!moved || work_ >= limit_) return;
   }
 }
 
@@ -358,7 +356,7 @@ void FleetScheduler::iterate(const FleetProblem& p) {
   FleetCost best = evaluate_fleet(p, routes_);
   const int patience = std::max(1, p.n);
   const auto vehicles = static_cast<std::uint64_t>(p.vehicles);
-  for (int idle = 0; idle < patience && work_ < config_.work_budget;) {
+  for (int idle = 0; idle < patience && work_ < limit_;) {
     const std::uint64_t kicks = 1 + rng_.below(2);
     for (std::uint64_t k = 0; k < kicks; ++k) {
       const std::size_t a = rng_.below(vehicles);
@@ -391,7 +389,7 @@ void FleetScheduler::order_routes(const FleetProblem& p, int rounds_left) {
   for (std::size_t v = 0; v < static_cast<std::size_t>(p.vehicles); ++v) {
     Route& r = routes_[v];
     if (r.size() < 2) continue;
-    const std::uint64_t left = config_.work_budget > work_ ? config_.work_budget - work_ : 0;
+    const std::uint64_t left = limit_ > work_ ? limit_ - work_ : 0;
     scheduler_.set_work_budget(
         std::max(config_.route_budget_min,
                  left / (routes_left-- * static_cast<std::uint64_t>(rounds_left))));
@@ -435,12 +433,11 @@ void FleetScheduler::solve_heuristic(const FleetProblem& p, const FleetRoutes* w
   }
   if (warm == nullptr) rng_ = Rng(config_.seed + static_cast<std::uint64_t>(p.n));
   // Half the budget for the split (descents, then kicks), the rest for the routes' orders.
-  const std::uint64_t budget = config_.work_budget;
-  config_.work_budget = budget / 2;
+  limit_ = config_.work_budget / 2;
   descend(p);
   iterate(p);
-  config_.work_budget = budget;
-  for (int round = 0; round < config_.rounds && work_ < config_.work_budget; ++round) {
+  limit_ = config_.work_budget;
+  for (int round = 0; round < config_.rounds && work_ < limit_; ++round) {
     order_routes(p, config_.rounds - round);
     const FleetCost before = evaluate_fleet(p, routes_);
     descend(p);

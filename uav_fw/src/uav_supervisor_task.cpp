@@ -354,10 +354,12 @@ void UavSupervisorTask::read_peers(TimePoint now) {
 
 void UavSupervisorTask::solve(TimePoint now) {
   stop_ugv_.clear();
+  stop_of_.fill(0);
   problem_ = ScheduleProblem{};
   for (RobotId id = 0; id < limits::kMaxUgvs; ++id) {
     const Request& r = requests_[id];
-    if (r.active && !r.served) (void)stop_ugv_.push_back(id);
+    if (r.active && !r.served && stop_ugv_.push_back(id))
+      stop_of_[id] = static_cast<std::uint8_t>(stop_ugv_.size());
   }
   problem_.n = static_cast<int>(stop_ugv_.size());
   if (problem_.n == 0) {
@@ -391,9 +393,7 @@ void UavSupervisorTask::solve(TimePoint now) {
   // The last plan, in this step's stop numbers: the scheduler continues improving it.
   warm_.clear();
   for (const RobotId id : plan_ugv_) {
-    for (std::size_t k = 0; k < stop_ugv_.size(); ++k) {
-      if (stop_ugv_[k] == id) (void)warm_.push_back(static_cast<std::uint8_t>(k + 1));
-    }
+    if (stop_of_[id] != 0) (void)warm_.push_back(stop_of_[id]);
   }
   StaticVector<RobotId, limits::kMaxUavs> live;
   for (RobotId id = 0; id < limits::kMaxUavs; ++id) {
@@ -453,11 +453,10 @@ void UavSupervisorTask::solve_with_peers(std::span<const RobotId> live) {
   holder.fill(0xFFFF);
   const auto hold = [&](RobotId uav, std::size_t vehicle, std::span<const RobotId> ugvs) {
     for (const RobotId ugv : ugvs) {
-      for (int k = 1; k <= n; ++k) {
-        if (stop_ugv_[static_cast<std::size_t>(k - 1)] != ugv || uav >= holder[k]) continue;
-        holder[k] = uav;
-        f.owner[k] = static_cast<std::int16_t>(vehicle);
-      }
+      const std::uint8_t k = stop_of_[ugv];
+      if (k == 0 || uav >= holder[k]) continue;
+      holder[k] = uav;
+      f.owner[k] = static_cast<std::int16_t>(vehicle);
     }
   };
   hold(config_.id, 0, {plan_ugv_.begin(), plan_ugv_.end()});
@@ -468,10 +467,8 @@ void UavSupervisorTask::solve_with_peers(std::span<const RobotId> live) {
   for (std::size_t v = 0; v <= live.size(); ++v) {
     const auto& ugvs = v == 0 ? plan_ugv_ : peers_[live[v - 1]].claims;
     for (const RobotId ugv : ugvs) {
-      for (int k = 1; k <= n; ++k) {
-        if (stop_ugv_[static_cast<std::size_t>(k - 1)] == ugv && f.owner[k] == static_cast<int>(v))
-          (void)fleet_warm_[v].push_back(static_cast<std::uint8_t>(k));
-      }
+      const std::uint8_t k = stop_of_[ugv];
+      if (k != 0 && f.owner[k] == static_cast<int>(v)) (void)fleet_warm_[v].push_back(k);
     }
   }
   const FleetResult& r = fleet_.solve(f, &fleet_warm_);

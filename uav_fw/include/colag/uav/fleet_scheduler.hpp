@@ -112,6 +112,10 @@ class FleetScheduler {
   bool swap_pass(const FleetProblem& p);
   // Two routes exchange their tails (2-opt*): a1 a2, b1 b2 -> a1 b2, b1 a2.
   bool tails_pass(const FleetProblem& p);
+  // Routes a and b as they are (their objective, summed), and the exchange that makes them
+  // scratch_ and other_: taken, and `now` updated, if that is better.
+  RouteCost pair_cost(const FleetProblem& p, std::size_t a, std::size_t b);
+  bool exchange_if_better(const FleetProblem& p, std::size_t a, std::size_t b, RouteCost& now);
   void descend(const FleetProblem& p);  // the three passes until none moves a stop
   // Iterated search on the split: a kick moves 1-2 random stops to random places in other
   // routes, a descent follows; kept if better, else undone; until `patience` idle kicks or the
@@ -135,6 +139,7 @@ class FleetScheduler {
   Route scratch_, other_;
   FleetRoutes best_;
   std::uint64_t work_ = 0;
+  std::uint64_t limit_ = 0;  // the work this part of the solve may reach (a share of the budget)
   Rng rng_{0};               // the kicks: reseeded by a cold solve, continued by warm ones
   bool on_waiting_ = false;  // this solve's switch cost counts on the waiting
   // Exact: per vehicle, the best route over each subset; then the best split.

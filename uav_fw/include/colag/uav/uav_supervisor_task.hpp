@@ -249,7 +249,8 @@ class UavSupervisorTask {
   Scheduler scheduler_;
   ScheduleProblem problem_;
   ScheduleResult schedule_;
-  StaticVector<RobotId, kMaxStops> stop_ugv_;   // schedule node k -> UGV id
+  StaticVector<RobotId, kMaxStops> stop_ugv_;             // schedule node k -> UGV id
+  std::array<std::uint8_t, limits::kMaxUgvs> stop_of_{};  // and back: UGV id -> k (0: none)
   StaticVector<RobotId, kMaxStops> plan_ugv_;   // the last plan's order, as UGV ids (warm start)
   StaticVector<std::uint8_t, kMaxStops> warm_;  // that order in this step's stop numbers
   // The other UAVs: where they fly, whether they fly the mission, which UGVs their plans hold.
