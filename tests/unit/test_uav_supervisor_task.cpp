@@ -580,3 +580,21 @@ TEST(UavSupervisorTask, ASilentUavsUgvsAreTakenOverAfterThePeerTimeout) {
   }
   EXPECT_EQ(f.held(0), (std::vector<RobotId>{0, 1}));
 }
+
+// Scheduling with a peer (its odometry and plans read, the split solved) allocates nothing.
+TEST(UavSupervisorTask, TwoUavsStepsAllocateNothingInSteadyState) {
+  TwoUavs f;
+  f.ugvs = {Vec2(-13, -5), Vec2(-11, 5), Vec2(13, -5), Vec2(11, 5)};
+  f.heartbeat(30.0);
+  f.ex.run_until(f.ex.now() + 2s);
+  const std::uint64_t before = f.uav[0]->health().fleet_schedules;
+  {
+    test::AllocationCounter counter;
+    for (int i = 0; i < 1000; ++i) {
+      if (i % 100 == 0) f.heartbeat(28.0);
+      f.ex.step();
+    }
+    EXPECT_EQ(counter.count(), 0u);
+  }
+  EXPECT_GT(f.uav[0]->health().fleet_schedules, before + 10);
+}
