@@ -69,7 +69,7 @@ BaseCounters CanBase::counters() const {
          o.implausible};
   } else if (odrive_) {
     const OdriveCounters& o = odrive_->counters();
-    c = {o.frames, o.samples, o.bad_frames, 0, o.implausible};
+    c = {o.frames, o.samples, o.bad_frames, 0, o.implausible, o.watchdog_clears};
   } else if (agilex_) {
     const AgilexCounters& o = agilex_->counters();
     c = {o.frames, o.samples, o.bad_frames, o.lost_states, o.implausible};

@@ -25,6 +25,7 @@ void OdriveBase::read_bus() {
       if (fb.command == odrive::Command::kHeartbeat) {
         ++counters_.heartbeats;
         a.beat = fb.heartbeat;
+        if (a.heard == kNever) a.first_heard = f.stamp;
         a.heard = f.stamp;
       } else {
         on_estimates(a, fb.estimates, f.stamp);
@@ -92,11 +93,27 @@ void OdriveBase::keep_in_closed_loop(TimePoint now) {
   if (!first && !elapsed(now, last_request_, config_.request_period)) return;
   for (Axis& a : axes_) {
     const bool ready = a.beat.axis_state == odrive::kAxisStateClosedLoop && !in_error(a.beat);
-    // A latched error stays until a person looks at it (a restart clears it if configured).
-    if (!first && (ready || in_error(a.beat))) continue;
+    if (ready) a.was_ready = true;
+    if (!first && ready) continue;
+    // Errors left from the last run are cleared at start, and again at each request until the
+    // axis has been ready once (the first clear may be lost: the ODrive still booting, a bus not
+    // yet up), for ready_timeout after it is first heard. After that an error stays latched
+    // until a person looks at it, except the watchdog's: it only says this host fell silent,
+    // and the host is live again (a 200 ms stall must not end the mission; a trip left from the
+    // last run only if errors are cleared at start).
+    const bool starting =
+        config_.clear_errors_at_start && !a.was_ready &&
+        (first || a.heard == kNever || !elapsed(now, a.first_heard, config_.ready_timeout));
+    const bool watchdog_only = a.beat.axis_error == odrive::kAxisErrorWatchdogExpired &&
+                               !a.beat.motor_error && !a.beat.encoder_error &&
+                               !a.beat.controller_error &&
+                               (a.was_ready || config_.clear_errors_at_start);
+    const bool clear = in_error(a.beat) ? (starting || watchdog_only) : (first && starting);
+    if (in_error(a.beat) && !clear) continue;
     const std::uint8_t n = a.config.node;
-    if (first && config_.clear_errors_at_start) {
+    if (clear) {
       (void)send(odrive::clear_errors(n), now);
+      if (!first && !starting) ++counters_.watchdog_clears;
       a.beat = {};  // its errors as last heard are the ones being cleared
     }
     (void)send(

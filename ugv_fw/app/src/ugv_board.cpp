@@ -117,13 +117,14 @@ void UgvBoard::print_counters(const char* program) const {
   const hal::CanBusStats b = bus_->stats();
   std::printf(
       "%s: CAN (%s) rx %llu, tx %llu, tx failures %llu, bad frames %llu, lost %llu, "
-      "implausible %llu, watchdog trips %llu, base faults %llu\n",
+      "implausible %llu, watchdog trips %llu, base faults %llu (%llu cleared by the driver)\n",
       program, hal::can::to_string(config_.base.protocol),
       static_cast<unsigned long long>(b.rx_frames), static_cast<unsigned long long>(b.tx_frames),
       static_cast<unsigned long long>(b.tx_failures), static_cast<unsigned long long>(c.bad_frames),
       static_cast<unsigned long long>(c.lost), static_cast<unsigned long long>(c.implausible),
       static_cast<unsigned long long>(task_ ? task_->health().watchdog_trips : 0),
-      static_cast<unsigned long long>(task_ ? task_->health().base_faults : 0));
+      static_cast<unsigned long long>(task_ ? task_->health().base_faults : 0),
+      static_cast<unsigned long long>(c.recoveries));
   if (ros2_) {
     const UgvRos2Counters r = ros2_->counters();
     std::printf(

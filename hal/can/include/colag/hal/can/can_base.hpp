@@ -30,6 +30,7 @@ struct BaseCounters {
   std::uint64_t bad_frames = 0;   // malformed frames of the base's ids
   std::uint64_t lost = 0;         // gaps in alive counters, where the protocol has them
   std::uint64_t implausible = 0;  // wheel steps beyond the limits, or time not advancing
+  std::uint64_t recoveries = 0;   // faults the driver cleared itself (an ODrive watchdog trip)
 };
 
 class CanBase {

@@ -2,9 +2,10 @@
 // A differential-drive base on two ODrive axes (CAN Simple, wheel level): WheelOdometry from the
 // axes' encoder estimates, Drive as velocity inputs. It brings the axes into closed-loop velocity
 // control at start (clearing errors left from the last run if configured), re-requests it while
-// an axis idles without an error, feeds the ODrive's watchdog with every velocity input, and
-// idles the axes at shutdown. An axis error, a lost heartbeat, an axis that will not enter
-// closed loop and bus-off are its health: the task stops on each.
+// an axis idles without an error, feeds the ODrive's watchdog with every velocity input, clears
+// the watchdog's trip once this host is live again, and idles the axes at shutdown. An axis
+// error, a lost heartbeat, an axis that will not enter closed loop and bus-off are its health:
+// the task stops on each.
 #include <cstdint>
 
 #include "colag/common/limits.hpp"
@@ -45,6 +46,7 @@ struct OdriveCounters {
   std::uint64_t implausible = 0;  // wheel steps beyond the limits, or time not advancing
   std::uint64_t overflowed = 0;   // samples dropped because the task did not poll
   std::uint64_t closed_loop_requests = 0;
+  std::uint64_t watchdog_clears = 0;  // watchdog trips cleared after start (this host stalled)
 };
 
 class OdriveBase final : public WheelOdometry, public Drive {
@@ -69,7 +71,9 @@ class OdriveBase final : public WheelOdometry, public Drive {
  private:
   struct Axis {
     OdriveAxisConfig config;
-    TimePoint heard = kNever;  // last heartbeat
+    TimePoint heard = kNever;        // last heartbeat
+    TimePoint first_heard = kNever;  // first heartbeat of this run
+    bool was_ready = false;          // in closed loop without error at least once this run
     odrive::Heartbeat beat;
     bool have_pos = false, fresh = false;
     double pos_turns = 0.0, used_turns = 0.0;  // newest, and the one of the last sample
