@@ -55,6 +55,8 @@ void print_table(const mission::MissionOutcome& o) {
   std::printf("  estimator NEES      %8.2f (3 when its covariance is honest)\n", o.nees_mean);
   std::printf("  UGV traj. length    %8.2f m\n", o.ugv_traj_length_m);
   std::printf("  UAV traj. length    %8.2f m\n", o.uav_traj_length_m);
+  if (o.config.uavs > 1)
+    std::printf("  UAVs closest        %8.2f m (3-D, airborne)\n", o.uav_min_separation_m);
   std::printf("  network in per UGV  %8.1f kB/s (CDR; the UAV sends %.1f kB/s in all)\n",
               o.bytes_in_per_ugv_per_s / 1e3, o.uav_bytes_out_per_s / 1e3);
   std::printf("  collisions          %8d\n", o.collisions);

@@ -35,7 +35,7 @@ void FlightPlanner::set_target(const Vec2& target, TimePoint now, const Vec2& fr
 }
 
 hal::FlightSetpoint FlightPlanner::step(const hal::UavState& s, TimePoint now, double dt,
-                                        const MapStore& flight_layer) {
+                                        const MapStore& flight_layer, const Neighbours& others) {
   const Vec2 p = s.pose.p.head<2>();
   const Vec2 v = s.velocity_mps.head<2>();
   Vec2 v_des = Vec2::Zero();
@@ -70,6 +70,8 @@ hal::FlightSetpoint FlightPlanner::step(const hal::UavState& s, TimePoint now, d
     const Vec2 to_aim = aim - p;
     if (to_aim.norm() > 1e-3) v_des = speed * to_aim.normalized();
   }
+  if (!others.empty())
+    v_des = separate(p, v_des, others, config_.limits.v_max_mps, config_.separation);
   // Acceleration limit: change the last setpoint by at most a_max * dt.
   const Vec2 from = have_cmd_ && (last_cmd_ - v).norm() <= config_.resync_mps ? last_cmd_ : v;
   Vec2 dv = v_des - from;

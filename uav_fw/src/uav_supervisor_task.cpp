@@ -161,10 +161,37 @@ void UavSupervisorTask::control_step(TimePoint now) {
   // or its failsafe action.
   const bool commanding =
       flight.state == msg::UavFlight::kInControl || flight.state == msg::UavFlight::kStarting;
+  read_peer_odometry(now);
   if (!have_state_ || !commanding) return;
   const hal::UavState here = predict_state(state_, now, config_.max_odometry_prediction);
-  if (!flight_out_.send_setpoint(flight_.step(here, now, dt, flight_layer_)))
+  if (!flight_out_.send_setpoint(flight_.step(here, now, dt, flight_layer_, neighbours(now))))
     ++health_.setpoint_errors;
+}
+
+Neighbours UavSupervisorTask::neighbours(TimePoint now) const {
+  Neighbours out;
+  const FlightLimits& limits = config_.flight.limits;
+  for (const Peer& peer : peers_) {
+    // On the ground too: one taking off beside us is in the air a moment later.
+    if (!peer.known) continue;
+    const bool heard = now - peer.heard <= config_.peer_timeout;
+    if (heard) {  // where it is now, by its velocity
+      const bool flies_mission =
+          peer.flight == msg::UavFlight::kInControl || peer.flight == msg::UavFlight::kStarting;
+      const double age = std::min(to_seconds(now - peer.heard), 0.5);
+      (void)out.push_back({peer.p + age * peer.v, peer.v, flies_mission});
+      continue;
+    }
+    // Silent (its board dead, its link lost): it flew on for up to peer_stop, until its flight
+    // controller's own failsafe, then braked; nothing says it left the line between. That line
+    // is kept clear of, for good.
+    const double speed = peer.v.norm();
+    Neighbour dead{peer.p, Vec2::Zero(), false};
+    dead.p_end = peer.p + peer.v * (to_seconds(config_.peer_stop) +
+                                    speed / (2.0 * std::max(limits.a_max_mps2, 0.1)));
+    (void)out.push_back(dead);
+  }
+  return out;
 }
 
 // --- mapping loop (10 Hz)
@@ -310,13 +337,14 @@ void UavSupervisorTask::read_statuses(TimePoint now) {
   }
 }
 
-void UavSupervisorTask::read_peers(TimePoint now) {
+// Every control step: where the others fly (separation needs it fresh).
+void UavSupervisorTask::read_peer_odometry(TimePoint now) {
   msg::UavOdometry od;
   while (peer_odometry_in_.pop(od)) {
     if (od.uav_id == config_.id) continue;  // our own
     if (od.uav_id >= limits::kMaxUavs || !std::isfinite(od.position_m[0]) ||
-        !std::isfinite(od.position_m[1]) || !std::isfinite(od.velocity_mps[0]) ||
-        !std::isfinite(od.velocity_mps[1])) {
+        !std::isfinite(od.position_m[1]) || !std::isfinite(od.position_m[2]) ||
+        !std::isfinite(od.velocity_mps[0]) || !std::isfinite(od.velocity_mps[1])) {
       ++health_.peer_messages_rejected;
       continue;
     }
@@ -327,6 +355,9 @@ void UavSupervisorTask::read_peers(TimePoint now) {
     peer.v = Vec2(od.velocity_mps[0], od.velocity_mps[1]);
     peer.flight = od.flight;
   }
+}
+
+void UavSupervisorTask::read_peers(TimePoint now) {
   msg::SupportPlan plan;
   while (peer_plans_in_.pop(plan)) {
     if (plan.uav_id == config_.id) continue;
@@ -620,6 +651,9 @@ void UavSupervisorTask::scheduling_step(TimePoint now) {
     return;
   }
   const Vec2 here = state_.pose.p.head<2>();
+  // A point over a UAV that does not keep its half of the separation (a dead one hovering
+  // there): the edge of its keep-out instead, or the UAV would never arrive.
+  target = clear_of(target, neighbours(now), config_.flight.separation.min_m + 0.5);
   // A different stop (or the same UGV's point moved): fly there first. Support points and
   // scouting points are circled once reached.
   const bool circled = target_is_request_ || target_is_scout_;

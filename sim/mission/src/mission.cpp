@@ -174,6 +174,8 @@ std::vector<sim::ClockModel> draw_clocks(const MissionConfig& cfg) {
 }
 
 // Each robot's port on the simulated network: UGV i's is i, UAV k's the k-th from the end.
+constexpr double kAirborne_m = 0.5;  // a UAV this high has taken off (separation counts)
+
 constexpr std::size_t uav_port(std::size_t k) {
   return platform::LoopbackTransport::kParticipants - 1 - k;
 }
@@ -363,6 +365,7 @@ struct Mission::Parts {
   std::unique_ptr<SupportLog> support;
   // What fly() found, for collect().
   std::vector<UgvOutcome> outcomes;
+  double uav_min_separation_m = -1.0;
 };
 
 Mission::Mission(std::unique_ptr<Parts> parts) : parts_(std::move(parts)) {}
@@ -637,6 +640,15 @@ void Mission::fly(MissionTrace* trace, MissionWatcher* watcher) {
         }
       }
     }
+    for (std::size_t a = 0; a < p.uavs.size(); ++a) {
+      for (std::size_t b = a + 1; b < p.uavs.size(); ++b) {
+        const Vec3 pa = p.world->uav(static_cast<int>(a)).state().pose.p;
+        const Vec3 pb = p.world->uav(static_cast<int>(b)).state().pose.p;
+        if (pa.z() < kAirborne_m || pb.z() < kAirborne_m) continue;
+        const double d = (pa - pb).norm();
+        if (p.uav_min_separation_m < 0.0 || d < p.uav_min_separation_m) p.uav_min_separation_m = d;
+      }
+    }
     if (trace != nullptr && tick % 5 == 0) {
       trace->uav_paths.resize(p.uavs.size());
       for (std::size_t k = 0; k < p.uavs.size(); ++k)
@@ -689,6 +701,7 @@ MissionOutcome Mission::collect(MissionTrace* trace) const {
   for (std::size_t k = 0; k < p.uavs.size(); ++k) {
     const uav::UavSupervisorTask& u = *p.uavs[k];
     out.uav_traj_length_m += p.world->uav(static_cast<int>(k)).travelled_m();
+    out.uav_min_separation_m = p.uav_min_separation_m;
     out.map_patches += u.sharer().counters().patches;
     out.map_patch_bytes += u.sharer().counters().bytes;
     out.schedules += u.health().schedules;

@@ -192,6 +192,7 @@ std::string to_json(const MissionOutcome& o, bool include_wall_time) {
   s["max_waiting_time_s"] = o.max_waiting_time_s;
   s["ugv_traj_length_m"] = o.ugv_traj_length_m;
   s["uav_traj_length_m"] = o.uav_traj_length_m;
+  if (o.config.uavs > 1) s["uav_min_separation_m"] = o.uav_min_separation_m;
   s["nees_mean"] = o.nees_mean;
   s["bytes_in_per_ugv_per_s"] = o.bytes_in_per_ugv_per_s;
   s["collisions"] = o.collisions;

@@ -8,6 +8,7 @@
 #include "colag/common/planner.hpp"
 #include "colag/hal/flight_controller.hpp"
 #include "colag/hal/odometry_source.hpp"
+#include "colag/uav/separation.hpp"
 #include "colag/uav/time_cost.hpp"
 
 namespace colag::uav {
@@ -25,6 +26,7 @@ struct FlightPlannerConfig {
   // limit. Restarted from the measurement when the vehicle is this far from the last setpoint
   // (a gust, a flight controller that held it).
   double resync_mps = 0.5;
+  SeparationConfig separation;  // from the other UAVs of the fleet
 };
 
 class FlightPlanner {
@@ -33,9 +35,10 @@ class FlightPlanner {
 
   void set_target(const Vec2& target, TimePoint now, const Vec2& from,
                   const MapStore& flight_layer);
-  // One guidance step: the setpoint that brings the UAV along the path.
+  // One guidance step: the setpoint that brings the UAV along the path, kept clear of the
+  // other UAVs of the fleet (none: the paper's single UAV).
   hal::FlightSetpoint step(const hal::UavState& state, TimePoint now, double dt_s,
-                           const MapStore& flight_layer);
+                           const MapStore& flight_layer, const Neighbours& others = {});
   bool has_target() const { return has_target_; }
   const Vec2& target() const { return target_; }
   const Path& path() const { return path_; }

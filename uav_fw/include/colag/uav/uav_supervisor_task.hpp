@@ -53,6 +53,9 @@ struct UavSupervisorConfig {
   FleetSchedulerConfig fleet;
   double fleet_switch_cost_s = 2.0;
   Duration peer_timeout = std::chrono::seconds(2);
+  // A peer fallen silent flies on until its flight controller's own failsafe (PX4: offboard
+  // loss after COM_OF_LOSS_T, 1 s by default), then brakes: it is kept clear of along that line.
+  Duration peer_stop = std::chrono::seconds(1);
   RobotId time_server = 0;  // the UAV whose clock is fleet time: only it answers clock requests
   // The paper's fallback when no order meets every deadline: plan as if v_max were 1.5x, 2.25x,
   // ... higher until one does (up to 100 times). Off: minimise total lateness instead.
@@ -262,6 +265,8 @@ class UavSupervisorTask {
     msg::UavFlight flight = msg::UavFlight::kInControl;
     StaticVector<RobotId, kMaxStops> claims;  // its last plan's UGVs, in its order
   };
+  void read_peer_odometry(TimePoint now);
+  Neighbours neighbours(TimePoint now) const;  // the peers to keep clear of
   platform::QueueReader<msg::UavOdometry, 8 * limits::kMaxUavs> peer_odometry_in_;
   platform::QueueReader<msg::SupportPlan, 2 * limits::kMaxUavs> peer_plans_in_;
   std::array<Peer, limits::kMaxUavs> peers_{};

@@ -98,6 +98,9 @@ struct MissionOutcome {
   double uav_bytes_out_per_s = 0.0;
   double ugv_traj_length_m = 0.0;
   double uav_traj_length_m = 0.0;
+  // With several UAVs: the closest two came to each other (3-D, true positions, sampled every
+  // 100 ms once both were airborne; -1 with one UAV).
+  double uav_min_separation_m = -1.0;
   int collisions = 0;
   bool all_reached = false;
   double sim_time_s = 0.0;

@@ -1,0 +1,147 @@
+// UAV-UAV separation (beyond the paper): simulated UAV bodies flown by their flight planners,
+// each keeping clear of the others through separate().
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "colag/common/map_store.hpp"
+#include "colag/sim/world/uav_body.hpp"
+#include "colag/uav/flight_planner.hpp"
+#include "colag/uav/separation.hpp"
+
+using namespace colag;
+using namespace std::chrono_literals;
+
+namespace {
+
+struct Flyer {
+  Flyer(const Vec2& from, const Vec2& to) : body({}, Vec3(from.x(), from.y(), 1.0)), goal(to) {}
+  sim::UavBody body;
+  uav::FlightPlanner planner{{}};
+  Vec2 goal;
+  bool cooperates = true;
+  bool dead = false;
+};
+
+// Flies them for `seconds` at 50 Hz; the dead ones hover where they are. The closest pair, 2-D.
+double fly(std::vector<Flyer>& flyers, double seconds) {
+  MapStore empty;
+  TimePoint t{};
+  for (Flyer& f : flyers)
+    f.planner.set_target(f.goal, t, f.body.state().pose.p.head<2>(), empty);
+  double closest = 1e9;
+  for (int k = 0; k < static_cast<int>(seconds / 0.02); ++k) {
+    t += 20ms;
+    for (std::size_t i = 0; i < flyers.size(); ++i) {
+      Flyer& f = flyers[i];
+      f.body.step(t, 0.02);
+      hal::UavState s;
+      while (f.body.poll(s)) {
+      }
+      if (f.dead) continue;
+      uav::Neighbours others;
+      for (std::size_t j = 0; j < flyers.size(); ++j) {
+        if (j == i) continue;
+        const hal::UavState& o = flyers[j].body.state();
+        (void)others.push_back({o.pose.p.head<2>(), o.velocity_mps.head<2>(),
+                                flyers[j].cooperates && !flyers[j].dead});
+      }
+      EXPECT_TRUE(f.body.send_setpoint(f.planner.step(f.body.state(), t, 0.02, empty, others)));
+    }
+    for (std::size_t i = 0; i < flyers.size(); ++i) {
+      for (std::size_t j = i + 1; j < flyers.size(); ++j) {
+        closest = std::min(closest, (flyers[i].body.state().pose.p.head<2>() -
+                                     flyers[j].body.state().pose.p.head<2>())
+                                        .norm());
+      }
+    }
+  }
+  return closest;
+}
+
+double to_goal(const Flyer& f) {
+  return (f.body.state().pose.p.head<2>() - f.goal).norm();
+}
+
+}  // namespace
+
+TEST(Separation, TwoUavsHeadOnBothTurnRightPassAndArrive) {
+  std::vector<Flyer> f;
+  f.emplace_back(Vec2(0, 0), Vec2(20, 0));
+  f.emplace_back(Vec2(20, 0), Vec2(0, 0));
+  const double closest = fly(f, 30.0);
+  EXPECT_GT(closest, 1.3);  // 1.5 m asked; the acceleration limit may cut a little into it
+  EXPECT_LT(to_goal(f[0]), 0.3);
+  EXPECT_LT(to_goal(f[1]), 0.3);
+}
+
+TEST(Separation, FourUavsCrossingAtOnePointKeepApartAndArrive) {
+  std::vector<Flyer> f;
+  f.emplace_back(Vec2(-10, 0), Vec2(10, 0));
+  f.emplace_back(Vec2(10, 0), Vec2(-10, 0));
+  f.emplace_back(Vec2(0, -10), Vec2(0, 10));
+  f.emplace_back(Vec2(0, 10), Vec2(0, -10));
+  const double closest = fly(f, 40.0);
+  EXPECT_GT(closest, 1.3);
+  for (const Flyer& x : f)
+    EXPECT_LT(to_goal(x), 0.3);
+}
+
+TEST(Separation, AUavThatDoesNotCooperateIsKeptClearOfAlone) {
+  // A dead UAV hovering on the line: the live one goes around it, keeping the whole distance.
+  std::vector<Flyer> f;
+  f.emplace_back(Vec2(0, 0), Vec2(20, 0));
+  f.emplace_back(Vec2(10, 0.1), Vec2(10, 0.1));
+  f[1].dead = true;
+  const double closest = fly(f, 30.0);
+  EXPECT_GT(closest, 1.3);
+  EXPECT_LT(to_goal(f[0]), 0.3);
+}
+
+TEST(Separation, WithoutTheFilterTheyWouldMeet) {
+  // The same head-on pair, neither told of the other: the test above measures something.
+  std::vector<Flyer> f;
+  f.emplace_back(Vec2(0, 0), Vec2(20, 0));
+  f.emplace_back(Vec2(20, 0), Vec2(0, 0));
+  MapStore empty;
+  TimePoint t{};
+  for (Flyer& x : f)
+    x.planner.set_target(x.goal, t, x.body.state().pose.p.head<2>(), empty);
+  double closest = 1e9;
+  for (int k = 0; k < 1500; ++k) {
+    t += 20ms;
+    for (Flyer& x : f) {
+      x.body.step(t, 0.02);
+      ASSERT_TRUE(x.body.send_setpoint(x.planner.step(x.body.state(), t, 0.02, empty)));
+    }
+    closest = std::min(closest, (f[0].body.state().pose.p - f[1].body.state().pose.p).norm());
+  }
+  EXPECT_LT(closest, 0.5);
+}
+
+TEST(Separation, ASilentPeersWholeStoppingLineIsKeptClear) {
+  // Last heard at the origin flying +x at 3 m/s: it may be anywhere up to p_end.
+  uav::Neighbour dead{Vec2(0, 0), Vec2::Zero(), false, Vec2(7.5, 0)};
+  EXPECT_NEAR((dead.nearest(Vec2(4, 3)) - Vec2(4, 0)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((dead.nearest(Vec2(-2, 1)) - Vec2(0, 0)).norm(), 0.0, 1e-12);
+  uav::Neighbours n;
+  (void)n.push_back(dead);
+  // A point to fly to inside its keep-out is moved to its edge, on the near side.
+  const Vec2 q = uav::clear_of(Vec2(5, 0.5), n, 2.0);
+  EXPECT_NEAR(q.x(), 5.0, 1e-9);
+  EXPECT_NEAR(q.y(), 2.0, 1e-9);
+  EXPECT_EQ(uav::clear_of(Vec2(5, 3), n, 2.0), Vec2(5, 3));  // outside: unchanged
+  // A cooperating peer keeps its own half: a point is not moved for it.
+  n[0].cooperates = true;
+  EXPECT_EQ(uav::clear_of(Vec2(5, 0.5), n, 2.0), Vec2(5, 0.5));
+  // Flying straight at the line: the approach is cut to what brakes to a stand at min_m, and
+  // what it loses is turned to the right.
+  uav::SeparationConfig c;
+  n[0].cooperates = false;
+  const Vec2 v = uav::separate(Vec2(4, -2.5), Vec2(0, 3), n, 3.0, c);
+  EXPECT_NEAR(v.y(), std::min(std::sqrt(2.0 * c.brake_mps2 * 1.0), c.rate_per_s * 1.0), 1e-9);
+  EXPECT_GT(v.x(), 0.0);  // towards +y, its right is +x
+  EXPECT_LE(v.norm(), 3.0 + 1e-12);
+}
