@@ -249,6 +249,32 @@ camera:
   EXPECT_NE(error.find("camera.tags[0].tag: out of range"), std::string::npos) << error;
 }
 
+TEST_F(BoardConfig, UavConfigSetsItsFleetAndRefusesAnIdBeyondIt) {
+  UavBoardConfig c;
+  std::string error;
+  ASSERT_TRUE(load_uav_config(write("uav_fleet.yaml", R"(
+robot: {id: 2, hal: sim}
+fleet: {separation_m: 3.0, peer_timeout_ms: 1500, peer_failsafe_ms: 2500}
+)"),
+                              c, error))
+      << error;
+  EXPECT_EQ(c.id, 2);
+  EXPECT_DOUBLE_EQ(c.separation_m, 3.0);
+  EXPECT_EQ(c.peer_timeout, std::chrono::milliseconds(1500));
+  EXPECT_EQ(c.peer_failsafe, std::chrono::milliseconds(2500));
+  ASSERT_TRUE(load_uav_config(write("uav_nofleet.yaml", "robot: {id: 0, hal: sim}"), c, error));
+  EXPECT_DOUBLE_EQ(c.separation_m, 1.5);  // the default
+  // The UGVs and the other UAVs would refuse every message of UAV 4.
+  EXPECT_FALSE(load_uav_config(write("uav_id4.yaml", "robot: {id: 4, hal: sim}"), c, error));
+  EXPECT_NE(error.find("robot.id: out of range"), std::string::npos) << error;
+  EXPECT_FALSE(load_uav_config(
+      write("uav_f1.yaml", "robot: {id: 0, hal: sim}\nfleet: {separation: 2}"), c, error));
+  EXPECT_NE(error.find("fleet.separation: unknown key"), std::string::npos) << error;
+  EXPECT_FALSE(load_uav_config(
+      write("uav_f2.yaml", "robot: {id: 0, hal: sim}\nfleet: {separation_m: 0.1}"), c, error));
+  EXPECT_NE(error.find("fleet.separation_m: out of range"), std::string::npos) << error;
+}
+
 TEST_F(BoardConfig, UavConfigDescribesItsLidarAndCameraView) {
   UavBoardConfig c;
   std::string error;

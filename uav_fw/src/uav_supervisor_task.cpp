@@ -182,12 +182,12 @@ Neighbours UavSupervisorTask::neighbours(TimePoint now) const {
       (void)out.push_back({peer.p + age * peer.v, peer.v, flies_mission});
       continue;
     }
-    // Silent (its board dead, its link lost): it flew on for up to peer_stop, until its flight
+    // Silent (its board dead, its link lost): it flew on for up to peer_failsafe, until its flight
     // controller's own failsafe, then braked; nothing says it left the line between. That line
     // is kept clear of, for good.
     const double speed = peer.v.norm();
     Neighbour dead{peer.p, Vec2::Zero(), false};
-    dead.p_end = peer.p + peer.v * (to_seconds(config_.peer_stop) +
+    dead.p_end = peer.p + peer.v * (to_seconds(config_.peer_failsafe) +
                                     speed / (2.0 * std::max(limits.a_max_mps2, 0.1)));
     (void)out.push_back(dead);
   }

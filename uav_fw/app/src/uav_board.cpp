@@ -79,6 +79,9 @@ bool UavBoard::start(std::string& error) {
   // The table: the transport first, then the task's loops, all from the UAV's schedule table.
   UavSupervisorConfig uc;
   uc.id = cfg.id;
+  uc.flight.separation.min_m = cfg.separation_m;
+  uc.peer_timeout = cfg.peer_timeout;
+  uc.peer_failsafe = cfg.peer_failsafe;
   uc.lidar_pattern = cfg.lidar_pattern;
   uc.camera_view = cfg.camera_view;
   uc.lidar_mount = cfg.lidar_mount;

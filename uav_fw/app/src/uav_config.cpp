@@ -90,7 +90,8 @@ void read_uav_sections(board::Reader& r, const YAML::Node& doc, UavBoardConfig& 
   const YAML::Node robot = child(doc, "robot");
   r.only(robot, "robot", {"id", "hal"});
   int id = 0;
-  r.get(robot, "robot", "id", id, 0, 255);
+  // The UGVs and the other UAVs refuse a UAV id beyond the fleet's (limits::kMaxUavs).
+  r.get(robot, "robot", "id", id, 0, static_cast<int>(limits::kMaxUavs) - 1);
   c.id = static_cast<RobotId>(id);
   std::string hal = "board";
   r.get(robot, "robot", "hal", hal);
@@ -99,6 +100,12 @@ void read_uav_sections(board::Reader& r, const YAML::Node& doc, UavBoardConfig& 
   c.sim_hal = hal == "sim";
   c.px4_hal = hal == "px4";
   read_flight_stack(r, doc, c);
+
+  const YAML::Node fleet = child(doc, "fleet");
+  r.only(fleet, "fleet", {"separation_m", "peer_timeout_ms", "peer_failsafe_ms"});
+  r.get(fleet, "fleet", "separation_m", c.separation_m, 0.3, 20.0);
+  r.millis(fleet, "fleet", "peer_timeout_ms", c.peer_timeout, 200.0, 30000.0);
+  r.millis(fleet, "fleet", "peer_failsafe_ms", c.peer_failsafe, 0.0, 10000.0);
 
   const YAML::Node cam = child(doc, "camera");
   r.only(
@@ -196,8 +203,8 @@ void read_uav_sections(board::Reader& r, const YAML::Node& doc, UavBoardConfig& 
   r.require(robot, "robot", "id");  // checked last: a wrong value elsewhere is reported first
 }
 
-const board::ConfigSchema<UavBoardConfig> kSchema{{"robot", "camera", "lidar", "px4", "odometry"},
-                                                  read_uav_sections};
+const board::ConfigSchema<UavBoardConfig> kSchema{
+    {"robot", "fleet", "camera", "lidar", "px4", "odometry"}, read_uav_sections};
 }  // namespace
 
 bool load_uav_config(const std::string& path, UavBoardConfig& out, std::string& error) {

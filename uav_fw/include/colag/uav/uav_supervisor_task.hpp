@@ -55,7 +55,7 @@ struct UavSupervisorConfig {
   Duration peer_timeout = std::chrono::seconds(2);
   // A peer fallen silent flies on until its flight controller's own failsafe (PX4: offboard
   // loss after COM_OF_LOSS_T, 1 s by default), then brakes: it is kept clear of along that line.
-  Duration peer_stop = std::chrono::seconds(1);
+  Duration peer_failsafe = std::chrono::seconds(1);
   RobotId time_server = 0;  // the UAV whose clock is fleet time: only it answers clock requests
   // The paper's fallback when no order meets every deadline: plan as if v_max were 1.5x, 2.25x,
   // ... higher until one does (up to 100 times). Off: minimise total lateness instead.

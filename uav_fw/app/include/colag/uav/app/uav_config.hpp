@@ -34,6 +34,11 @@ struct UavBoardConfig {
   // and the camera's view of the tags (where it flies to see most of them).
   LidarBeamPattern lidar_pattern;
   CameraView camera_view;
+  // fleet: with other UAVs (see UavSupervisorConfig): how far apart they keep, when a silent
+  // one is gone, and how long a silent one flies on before its own failsafe.
+  double separation_m = 1.5;
+  Duration peer_timeout = std::chrono::seconds(2);
+  Duration peer_failsafe = std::chrono::seconds(1);
 };
 
 // False with `error` = "FILE: key.path: problem".
