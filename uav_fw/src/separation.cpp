@@ -5,6 +5,14 @@
 
 namespace colag::uav {
 
+namespace {
+// The unit vector along `away` (of length d); on top of each other any direction apart will do,
+// the same one every step.
+Vec2 direction(const Vec2& away, double d) {
+  return d > 1e-6 ? Vec2(away / d) : Vec2(1.0, 0.0);
+}
+}  // namespace
+
 Vec2 Neighbour::nearest(const Vec2& q) const {
   const Vec2 line = p_end - p;
   const double l2 = line.squaredNorm();
@@ -21,8 +29,7 @@ Vec2 separate(const Vec2& p, const Vec2& wanted, const Neighbours& others, doubl
     for (const Neighbour& o : others) {
       const Vec2 away = p - o.nearest(p);
       const double d = away.norm();
-      // On top of each other: any direction apart will do, the same one every step.
-      const Vec2 n = d > 1e-6 ? Vec2(away / d) : Vec2(1.0, 0.0);
+      const Vec2 n = direction(away, d);
       const double share = o.cooperates ? 0.5 : 1.0;
       // Lower bound on the speed away from it; one that does not cooperate moves on its own.
       const double gap = d - config.min_m;
@@ -52,7 +59,7 @@ Vec2 clear_of(const Vec2& point, const Neighbours& others, double radius) {
       const Vec2 away = q - at;
       const double d = away.norm();
       if (d >= radius) continue;
-      q = at + radius * (d > 1e-6 ? Vec2(away / d) : Vec2(1.0, 0.0));
+      q = at + radius * direction(away, d);
     }
   }
   return q;

@@ -170,7 +170,7 @@ void UavSupervisorTask::control_step(TimePoint now) {
 
 Neighbours UavSupervisorTask::neighbours(TimePoint now) const {
   Neighbours out;
-  const FlightLimits& limits = config_.flight.limits;
+  const double brake = std::max(config_.flight.limits.a_max_mps2, 0.1);
   for (const Peer& peer : peers_) {
     // On the ground too: one taking off beside us is in the air a moment later.
     if (!peer.known) continue;
@@ -187,8 +187,7 @@ Neighbours UavSupervisorTask::neighbours(TimePoint now) const {
     // is kept clear of, for good.
     const double speed = peer.v.norm();
     Neighbour dead{peer.p, Vec2::Zero(), false};
-    dead.p_end = peer.p + peer.v * (to_seconds(config_.peer_failsafe) +
-                                    speed / (2.0 * std::max(limits.a_max_mps2, 0.1)));
+    dead.p_end = peer.p + peer.v * (to_seconds(config_.peer_failsafe) + speed / (2.0 * brake));
     (void)out.push_back(dead);
   }
   return out;

@@ -173,9 +173,9 @@ std::vector<sim::ClockModel> draw_clocks(const MissionConfig& cfg) {
   return out;
 }
 
-// Each robot's port on the simulated network: UGV i's is i, UAV k's the k-th from the end.
 constexpr double kAirborne_m = 0.5;  // a UAV this high has taken off (separation counts)
 
+// Each robot's port on the simulated network: UGV i's is i, UAV k's the k-th from the end.
 constexpr std::size_t uav_port(std::size_t k) {
   return platform::LoopbackTransport::kParticipants - 1 - k;
 }
@@ -697,11 +697,11 @@ MissionOutcome Mission::collect(MissionTrace* trace) const {
     out.uav_bytes_out_per_s =
         static_cast<double>(p.bus->traffic(uav_port(0)).bytes_out) / out.sim_time_s;
   }
+  out.uav_min_separation_m = p.uav_min_separation_m;
   // With several UAVs: their sums (their time in each mode, their flying, their patches, ...).
   for (std::size_t k = 0; k < p.uavs.size(); ++k) {
     const uav::UavSupervisorTask& u = *p.uavs[k];
     out.uav_traj_length_m += p.world->uav(static_cast<int>(k)).travelled_m();
-    out.uav_min_separation_m = p.uav_min_separation_m;
     out.map_patches += u.sharer().counters().patches;
     out.map_patch_bytes += u.sharer().counters().bytes;
     out.schedules += u.health().schedules;
