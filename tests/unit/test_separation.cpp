@@ -100,6 +100,33 @@ TEST(Separation, AUavThatDoesNotCooperateIsKeptClearOfAlone) {
   EXPECT_LT(to_goal(f[0]), 0.3);
 }
 
+TEST(Separation, AStopBehindADeadUavsStoppingLineIsReachedRoundIt) {
+  // As in a 2-UAV field mission: the peer fell silent flying from (-5.0, 0.3) towards
+  // (-4.3, -2.3); the live UAV's stop lies behind that line, its path straight through it. It
+  // once stood at the line's edge for 80 s: the sideways step cancelled its slide round it.
+  uav::Neighbours dead;
+  (void)dead.push_back({Vec2(-5.02, 0.34), Vec2::Zero(), false, Vec2(-4.26, -2.25)});
+  const Vec2 goal = uav::clear_of(Vec2(-6.8, -2.89), dead, 2.0);
+  sim::UavBody body({}, Vec3(-1.5, 1.0, 1.0));
+  uav::FlightPlanner planner{{}};
+  MapStore empty;
+  TimePoint t{};
+  planner.set_target(goal, t, body.state().pose.p.head<2>(), empty);
+  double closest = 1e9;
+  for (int k = 0; k < 1000; ++k) {  // 20 s
+    t += 20ms;
+    body.step(t, 0.02);
+    hal::UavState s;
+    while (body.poll(s)) {
+    }
+    const Vec2 p = body.state().pose.p.head<2>();
+    closest = std::min(closest, (p - dead[0].nearest(p)).norm());
+    ASSERT_TRUE(body.send_setpoint(planner.step(body.state(), t, 0.02, empty, dead)));
+  }
+  EXPECT_LT((body.state().pose.p.head<2>() - goal).norm(), 0.3);
+  EXPECT_GT(closest, 1.3);
+}
+
 TEST(Separation, WithoutTheFilterTheyWouldMeet) {
   // The same head-on pair, neither told of the other: the test above measures something.
   std::vector<Flyer> f;

@@ -39,8 +39,12 @@ Vec2 separate(const Vec2& p, const Vec2& wanted, const Neighbours& others, doubl
       if (!o.cooperates) bound += n.dot(o.v);
       const double missing = bound - n.dot(v);
       if (missing <= 1e-9) continue;
-      const Vec2 right(-n.y(), n.x());  // right of the line towards it (towards it is -n)
-      v += missing * n + (pass == 0 ? config.sidestep * missing : 0.0) * right;
+      // The speed taken away goes sideways, the way the UAV already slides past it: against
+      // that way it cancelled the slide and held the UAV at the keep-out's edge for good (a dead
+      // UAV between it and its stop). Head-on, to the right of the line towards it (-n).
+      const Vec2 right(-n.y(), n.x());
+      const Vec2 side = v.dot(right) < -1e-6 ? Vec2(-right) : right;
+      v += missing * n + (pass == 0 ? config.sidestep * missing : 0.0) * side;
       changed = true;
     }
     if (!changed) break;

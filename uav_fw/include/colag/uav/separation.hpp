@@ -8,9 +8,10 @@
 // turning as they pass, its position a step old, the setpoint ramp). A peer that flies the mission
 // brakes for the other half (each brakes within half the distance); one that does not answer
 // (silent, landing, in a pilot's hands) is kept clear of alone. Closer than min_m (a peer appeared
-// there), it moves away at out_rate_per_s x the shortfall. The approach speed taken away is turned
-// to the right of the line to the other UAV: two UAVs head-on both turn right and pass, instead of
-// stopping nose to nose.
+// there), it moves away at out_rate_per_s x the shortfall. Part of the approach speed taken away
+// is turned sideways, the way the UAV already passes the other (to the right of the line to it
+// when head-on): two UAVs head-on both turn right and pass instead of stopping nose to nose, and
+// one whose stop lies behind a dead UAV slides round it instead of waiting at its edge.
 #include "colag/common/geometry.hpp"
 #include "colag/common/limits.hpp"
 #include "colag/common/static_vector.hpp"
@@ -22,7 +23,7 @@ struct SeparationConfig {
   double brake_mps2 = 0.25;  // of the UAV's a_max (1 m/s^2); 0.7 let two come 0.6 m close
   double rate_per_s = 1.0;
   double out_rate_per_s = 0.5;
-  double sidestep = 0.5;  // of the approach speed taken away, this much turned to the right
+  double sidestep = 0.5;  // of the approach speed taken away, this much turned sideways
 };
 
 struct Neighbour {
