@@ -16,7 +16,7 @@ void UgvEkf::advance(Step& cur, const Step& prev) const {
   cur.x = prev.x;
   cur.P = prev.P;
   propagate(cur.x, cur.P, cur.v, cur.w, to_seconds(cur.t - prev.t), config_.noise,
-            config_.calibration.walk_variance_per_s());
+            config_.calibration.walk());
 }
 
 void UgvEkf::clamp_calibration(UgvStateVec& x) const {

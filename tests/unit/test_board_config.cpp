@@ -51,7 +51,7 @@ wheels: {radius_m: 0.08, track_m: 0.5, ticks_per_rev: 2048, max_speed_mps: 1.2}
 rates: {control_hz: 100, planning_hz: 5}
 odometry: {timeout_ms: 80, sigma_v: 0.05, sigma_omega: 0.04,
            calibration: {estimate: true, scale: 0.01, turn_scale: 0.05, drift_per_m: 0.02,
-                         drift_per_s: 0.002}}
+                         drift_per_s: 0.002, turn_walk: 0.05}}
 )"),
                               c, error))
       << error;
@@ -84,6 +84,7 @@ odometry: {timeout_ms: 80, sigma_v: 0.05, sigma_omega: 0.04,
   EXPECT_DOUBLE_EQ(c.nav.ekf.calibration.sigma_scale_omega, 0.05);
   EXPECT_DOUBLE_EQ(c.nav.ekf.calibration.sigma_omega_per_m_radpm, 0.02);
   EXPECT_DOUBLE_EQ(c.nav.ekf.calibration.sigma_omega_bias_radps, 0.002);
+  EXPECT_DOUBLE_EQ(c.nav.ekf.calibration.walk_turn_per_sqrt_rad, 0.05);
   EXPECT_EQ(c.state_file, "/var/lib/colag/ugv3.state");
   EXPECT_DOUBLE_EQ(c.state_max_age_s, 60.0);
 }

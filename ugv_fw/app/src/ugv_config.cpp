@@ -130,7 +130,8 @@ void read_ugv_sections(board::Reader& r, const YAML::Node& doc, UgvBoardConfig& 
   const YAML::Node cal = child(odo, "calibration");
   const std::string cp = "odometry.calibration";
   r.only(cal, cp,
-         {"estimate", "scale", "turn_scale", "drift_per_m", "drift_per_s", "slip_per_radps"});
+         {"estimate", "scale", "turn_scale", "drift_per_m", "drift_per_s", "slip_per_radps",
+          "turn_walk"});
   OdometryCalibrationModel& m = c.nav.ekf.calibration;
   r.get(cal, cp, "estimate", m.estimate);
   r.get(cal, cp, "scale", m.sigma_scale_v, 0.0, 0.3);
@@ -138,6 +139,7 @@ void read_ugv_sections(board::Reader& r, const YAML::Node& doc, UgvBoardConfig& 
   r.get(cal, cp, "drift_per_m", m.sigma_omega_per_m_radpm, 0.0, 0.5);
   r.get(cal, cp, "drift_per_s", m.sigma_omega_bias_radps, 0.0, 0.1);
   r.get(cal, cp, "slip_per_radps", m.sigma_slip_per_radps, 0.0, 0.5);
+  r.get(cal, cp, "turn_walk", m.walk_turn_per_sqrt_rad, 0.0, 0.3);
 
   // Checked last, so that a wrong value elsewhere is the error reported first.
   r.require(robot, "robot", "id");

@@ -57,7 +57,7 @@ class CollisionPredictor {
  public:
   CollisionPredictor(const PredictorConfig& config, const OdometryNoise& noise,
                      const OdometryCalibrationModel& calibration = {})
-      : config_(config), noise_(noise), walk_(calibration.walk_variance_per_s()) {}
+      : config_(config), noise_(noise), walk_(calibration.walk()) {}
 
   // `state`, `covariance`: the EKF now (pose and calibration); the robot is at trajectory
   // sample `progress`.
@@ -87,7 +87,7 @@ class CollisionPredictor {
   static constexpr double kDistanceSearch_m = 1.0;
   PredictorConfig config_;
   OdometryNoise noise_;
-  Eigen::Matrix<double, kCalibrationDim, 1> walk_;
+  CalibrationWalk walk_;
   double horizon_scale_ = 1.0;
   // Blocked cells under the current ellipse (ascending indices): touching them is not news.
   StaticVector<std::uint32_t, kMaxExcused> excused_;
