@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <vector>
 
 #include "colag/common/map_store.hpp"
@@ -108,10 +109,10 @@ TEST(Separation, AStopBehindADeadUavsStoppingLineIsReachedRoundIt) {
   (void)dead.push_back({Vec2(-5.02, 0.34), Vec2::Zero(), false, Vec2(-4.26, -2.25)});
   const Vec2 goal = uav::clear_of(Vec2(-6.8, -2.89), dead, 2.0);
   sim::UavBody body({}, Vec3(-1.5, 1.0, 1.0));
-  uav::FlightPlanner planner{{}};
+  auto planner = std::make_unique<uav::FlightPlanner>(uav::FlightPlannerConfig{});
   MapStore empty;
   TimePoint t{};
-  planner.set_target(goal, t, body.state().pose.p.head<2>(), empty);
+  planner->set_target(goal, t, body.state().pose.p.head<2>(), empty);
   double closest = 1e9;
   for (int k = 0; k < 1000; ++k) {  // 20 s
     t += 20ms;
@@ -121,10 +122,35 @@ TEST(Separation, AStopBehindADeadUavsStoppingLineIsReachedRoundIt) {
     }
     const Vec2 p = body.state().pose.p.head<2>();
     closest = std::min(closest, (p - dead[0].nearest(p)).norm());
-    ASSERT_TRUE(body.send_setpoint(planner.step(body.state(), t, 0.02, empty, dead)));
+    ASSERT_TRUE(body.send_setpoint(planner->step(body.state(), t, 0.02, empty, dead)));
   }
   EXPECT_LT((body.state().pose.p.head<2>() - goal).norm(), 0.3);
   EXPECT_GT(closest, 1.3);
+}
+
+TEST(Separation, ADeadUavsKeepOutIsPlannedRound) {
+  // Its stopping line lies across the way, 6 m long: the path goes round its end, clear of it by
+  // the separation, instead of straight at it (leaving the filter to slide along it).
+  uav::Neighbours dead;
+  (void)dead.push_back({Vec2(5, -3), Vec2::Zero(), false, Vec2(5, 3)});
+  // Planners hold their search grids: on the heap, not on the test's stack.
+  auto planner = std::make_unique<uav::FlightPlanner>(uav::FlightPlannerConfig{});
+  MapStore empty;
+  planner->set_target(Vec2(10, 0), TimePoint{}, Vec2(0, 0), empty, dead);
+  const Path& path = planner->path();
+  ASSERT_GT(path.waypoints.size(), 2u);
+  const double min_m = uav::SeparationConfig{}.min_m;
+  for (std::size_t i = 1; i < path.waypoints.size(); ++i) {
+    for (double t = 0.0; t <= 1.0; t += 0.01) {
+      const Vec2 q = path.waypoints[i - 1] + t * (path.waypoints[i] - path.waypoints[i - 1]);
+      EXPECT_GT((q - dead[0].nearest(q)).norm(), min_m) << q.transpose();
+    }
+  }
+  // A peer that flies the mission moves: it is not planned round.
+  dead[0].cooperates = true;
+  planner = std::make_unique<uav::FlightPlanner>(uav::FlightPlannerConfig{});
+  planner->set_target(Vec2(10, 0), TimePoint{}, Vec2(0, 0), empty, dead);
+  EXPECT_EQ(planner->path().waypoints.size(), 2u);
 }
 
 TEST(Separation, WithoutTheFilterTheyWouldMeet) {

@@ -7,12 +7,35 @@
 
 namespace colag::uav {
 
-void FlightPlanner::plan(const Vec2& from, TimePoint now, const MapStore& flight_layer) {
+namespace {
+// Discs along each keep-out line of a UAV that does not cooperate, half a radius apart. The
+// radius stays under what clear_of() leaves round a target (min_m + 0.5), so a target it moved
+// is outside them.
+using KeepOut = StaticVector<DiscObstacle, limits::kMaxUavs * 16>;
+void keep_outs(const Neighbours& others, double min_m, KeepOut& out) {
+  const double r = min_m + 0.2;
+  for (const Neighbour& o : others) {
+    if (o.cooperates) continue;
+    const double length = (o.p_end - o.p).norm();
+    const int n = std::clamp(static_cast<int>(std::ceil(length / (0.5 * r))), 0, 15);
+    for (int i = 0; i <= n; ++i) {
+      const Vec2 c = n == 0 ? o.p : Vec2(o.p + (o.p_end - o.p) * (static_cast<double>(i) / n));
+      if (!out.push_back({c, r})) return;
+    }
+  }
+}
+}  // namespace
+
+void FlightPlanner::plan(const Vec2& from, TimePoint now, const MapStore& flight_layer,
+                         const Neighbours& others) {
   planned_at_ = now;
+  KeepOut discs;
+  keep_outs(others, config_.separation.min_m, discs);
   // A target beyond the flight layer's window: around what it knows up to where the straight
   // line leaves it, then straight on (unknown is free at flight altitude: the UAV sees).
   const Vec2 to = clip_into(flight_layer.geometry(), from, target_, 1.0);
-  if (planner_.plan(flight_layer, from, to, {}, path_) == PlanResult::kOk) {
+  if (planner_.plan(flight_layer, from, to, {discs.begin(), discs.end()}, path_) ==
+      PlanResult::kOk) {
     if (to != target_) {
       if (!path_.waypoints.push_back(target_)) path_.waypoints.back() = target_;
       path_.length_m += (target_ - to).norm();
@@ -27,11 +50,11 @@ void FlightPlanner::plan(const Vec2& from, TimePoint now, const MapStore& flight
 }
 
 void FlightPlanner::set_target(const Vec2& target, TimePoint now, const Vec2& from,
-                               const MapStore& flight_layer) {
+                               const MapStore& flight_layer, const Neighbours& others) {
   if (has_target_ && (target - target_).norm() <= config_.retarget_m) return;
   target_ = target;
   has_target_ = true;
-  plan(from, now, flight_layer);
+  plan(from, now, flight_layer, others);
 }
 
 hal::FlightSetpoint FlightPlanner::step(const hal::UavState& s, TimePoint now, double dt,
@@ -40,7 +63,7 @@ hal::FlightSetpoint FlightPlanner::step(const hal::UavState& s, TimePoint now, d
   const Vec2 v = s.velocity_mps.head<2>();
   Vec2 v_des = Vec2::Zero();
   if (has_target_) {
-    if (now - planned_at_ >= config_.replan_period) plan(p, now, flight_layer);
+    if (now - planned_at_ >= config_.replan_period) plan(p, now, flight_layer, others);
     // Lookahead point: the first path point beyond the lookahead distance, walking from the
     // path segment nearest to the UAV.
     std::size_t seg = 1;

@@ -652,7 +652,8 @@ void UavSupervisorTask::scheduling_step(TimePoint now) {
   const Vec2 here = state_.pose.p.head<2>();
   // A point over a UAV that does not keep its half of the separation (a dead one hovering
   // there): the edge of its keep-out instead, or the UAV would never arrive.
-  target = clear_of(target, neighbours(now), config_.flight.separation.min_m + 0.5);
+  const Neighbours others = neighbours(now);
+  target = clear_of(target, others, config_.flight.separation.min_m + 0.5);
   // A different stop (or the same UGV's point moved): fly there first. Support points and
   // scouting points are circled once reached.
   const bool circled = target_is_request_ || target_is_scout_;
@@ -669,7 +670,7 @@ void UavSupervisorTask::scheduling_step(TimePoint now) {
                     to_seconds(config_.schedule.scheduling.period);
     const Vec2 orbit =
         target + config_.orbit_radius_m * Vec2(std::cos(orbit_phase_), std::sin(orbit_phase_));
-    flight_.set_target(orbit, now, here, flight_layer_);
+    flight_.set_target(orbit, now, here, flight_layer_, others);
     if (target_is_scout_ && elapsed(now, hover_since_, config_.scout_timeout)) {
       // Its point stays where it was: a cell we do not see from here. Scout for the others.
       ugvs_[static_cast<std::size_t>(target_ugv_)].scout_rest_until = now + config_.scout_rest;
@@ -689,7 +690,7 @@ void UavSupervisorTask::scheduling_step(TimePoint now) {
     mode_ = target_is_request_ ? UavMode::kTransit
             : target_is_scout_ ? UavMode::kScout
                                : UavMode::kIdle;
-    flight_.set_target(target, now, here, flight_layer_);
+    flight_.set_target(target, now, here, flight_layer_, others);
   }
   ++health_.mode_steps[static_cast<std::size_t>(mode_)];
   publish_plan(now, changed);

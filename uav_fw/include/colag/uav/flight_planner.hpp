@@ -33,8 +33,10 @@ class FlightPlanner {
  public:
   explicit FlightPlanner(const FlightPlannerConfig& config) : config_(config) {}
 
-  void set_target(const Vec2& target, TimePoint now, const Vec2& from,
-                  const MapStore& flight_layer);
+  // `others`: a UAV that does not cooperate (dead, landing) is planned round, its whole
+  // keep-out; the ones that fly the mission move, and only the separation filter minds them.
+  void set_target(const Vec2& target, TimePoint now, const Vec2& from, const MapStore& flight_layer,
+                  const Neighbours& others = {});
   // One guidance step: the setpoint that brings the UAV along the path, kept clear of the
   // other UAVs of the fleet (none: the paper's single UAV).
   hal::FlightSetpoint step(const hal::UavState& state, TimePoint now, double dt_s,
@@ -45,7 +47,8 @@ class FlightPlanner {
   std::uint64_t plan_failures() const { return plan_failures_; }
 
  private:
-  void plan(const Vec2& from, TimePoint now, const MapStore& flight_layer);
+  void plan(const Vec2& from, TimePoint now, const MapStore& flight_layer,
+            const Neighbours& others);
 
   FlightPlannerConfig config_;
   Planner planner_;
