@@ -8,20 +8,18 @@
 namespace colag::uav {
 
 namespace {
-// Discs along each keep-out line of a UAV that does not cooperate, half a radius apart. The
-// radius stays under what clear_of() leaves round a target (min_m + 0.5), so a target it moved
-// is outside them.
-using KeepOut = StaticVector<DiscObstacle, limits::kMaxUavs * 16>;
-void keep_outs(const Neighbours& others, double min_m, KeepOut& out) {
-  const double r = min_m + 0.2;
+// Discs along each keep-out line of a UAV that does not cooperate, half a radius apart.
+constexpr int kDiscsPerUav = 16;
+using KeepOut = StaticVector<DiscObstacle, limits::kMaxUavs * kDiscsPerUav>;
+void keep_outs(const Neighbours& others, const SeparationConfig& sep, KeepOut& out) {
+  const double r = sep.min_m + sep.path_margin_m;
   for (const Neighbour& o : others) {
     if (o.cooperates) continue;
-    const double length = (o.p_end - o.p).norm();
-    const int n = std::clamp(static_cast<int>(std::ceil(length / (0.5 * r))), 0, 15);
-    for (int i = 0; i <= n; ++i) {
-      const Vec2 c = n == 0 ? o.p : Vec2(o.p + (o.p_end - o.p) * (static_cast<double>(i) / n));
-      if (!out.push_back({c, r})) return;
-    }
+    const Vec2 line = o.p_end - o.p;
+    const int n =
+        std::clamp(static_cast<int>(std::ceil(line.norm() / (0.5 * r))), 1, kDiscsPerUav - 1);
+    for (int i = 0; i <= n; ++i)
+      (void)out.push_back({o.p + line * (static_cast<double>(i) / n), r});
   }
 }
 }  // namespace
@@ -30,7 +28,7 @@ void FlightPlanner::plan(const Vec2& from, TimePoint now, const MapStore& flight
                          const Neighbours& others) {
   planned_at_ = now;
   KeepOut discs;
-  keep_outs(others, config_.separation.min_m, discs);
+  keep_outs(others, config_.separation, discs);
   // A target beyond the flight layer's window: around what it knows up to where the straight
   // line leaves it, then straight on (unknown is free at flight altitude: the UAV sees).
   const Vec2 to = clip_into(flight_layer.geometry(), from, target_, 1.0);

@@ -653,7 +653,8 @@ void UavSupervisorTask::scheduling_step(TimePoint now) {
   // A point over a UAV that does not keep its half of the separation (a dead one hovering
   // there): the edge of its keep-out instead, or the UAV would never arrive.
   const Neighbours others = neighbours(now);
-  target = clear_of(target, others, config_.flight.separation.min_m + 0.5);
+  const SeparationConfig& sep = config_.flight.separation;
+  target = clear_of(target, others, sep.min_m + sep.target_margin_m);
   // A different stop (or the same UGV's point moved): fly there first. Support points and
   // scouting points are circled once reached.
   const bool circled = target_is_request_ || target_is_scout_;

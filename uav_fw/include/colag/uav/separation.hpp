@@ -24,6 +24,10 @@ struct SeparationConfig {
   double rate_per_s = 1.0;
   double out_rate_per_s = 0.5;
   double sidestep = 0.5;  // of the approach speed taken away, this much turned sideways
+  // Round a UAV that does not cooperate, beyond min_m: a target is moved this far out of its
+  // keep-out, and the flight path keeps this far (less, so a moved target is not inside it).
+  double target_margin_m = 0.5;
+  double path_margin_m = 0.2;
 };
 
 struct Neighbour {
