@@ -5,6 +5,7 @@
 #include <memory>
 #include <string>
 
+#include "colag/common/limits.hpp"
 #include "colag/sim/mission/mission.hpp"
 #include "colag/sim/mission/world_file.hpp"
 
@@ -40,6 +41,36 @@ TEST(SeveralUavs, OneOfTwoDiesMidMissionAndEveryUgvStillReachesSafely) {
   // The live UAV kept clear of the dead one's stopping line (1.5 m asked; 0.97 m without the
   // separation filter in this mission).
   EXPECT_GT(o.uav_min_separation_m, 1.2);
+}
+
+TEST(SeveralUavs, TheLargestFleetsAreBuiltAndFly) {
+  // Every count the options accept must fit the executor's table and the network's readers: 32
+  // UGVs with 4 UAVs (one of them dying, with every watch a fault adds) and the self-perception
+  // baseline's 32 (a third loop per UGV). Both were refused as "too many tasks for one executor".
+  std::string error;
+  MissionConfig cfg;
+  cfg.scenario = "dense";
+  cfg.ugvs = static_cast<int>(limits::kMaxUgvs);
+  cfg.uavs = static_cast<int>(limits::kMaxUavs);
+  cfg.max_time_s = 2.0;
+  cfg.faults.uav_lost_at_s = 1.0;
+  cfg.faults.base_fault_at_s = 1.0;
+  ASSERT_TRUE(world_from_name("field", cfg.world, error)) << error;
+  std::unique_ptr<Mission> m = Mission::compose(cfg, error);
+  ASSERT_TRUE(m) << error;
+  EXPECT_EQ(m->uav_count(), limits::kMaxUavs);
+  m->fly();
+  EXPECT_EQ(m->collect().ugvs.size(), limits::kMaxUgvs);
+
+  MissionConfig alone;
+  alone.scenario = "dense";
+  alone.ugvs = static_cast<int>(limits::kMaxUgvs);
+  alone.self_perception = true;
+  alone.max_time_s = 2.0;
+  m = Mission::compose(alone, error);
+  ASSERT_TRUE(m) << error;
+  m->fly();
+  EXPECT_EQ(m->collect().ugvs.size(), limits::kMaxUgvs);
 }
 
 TEST(SeveralUavs, BadCountsAreRefused) {

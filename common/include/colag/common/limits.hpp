@@ -64,9 +64,10 @@ inline constexpr std::size_t kClockFilterBins = 32;  // clock-offset bins (8 s e
 inline constexpr std::size_t kClockStepRun = 4;      // unexplained exchanges held (step: 3)
 
 // --- Runtime -----------------------------------------------------------------------------------
-// A board runs a handful of tasks; the host simulator puts a whole fleet in one table
-// (32 UGVs x 2 loops + the UAV's 4 + world, transport, monitor).
-inline constexpr std::size_t kMaxTasksPerExecutor = 2 * kMaxUgvs + 16;
+// A board runs a handful of tasks; the host simulator puts a whole fleet in one table: each
+// UGV's 2 loops (3 with the self-perception baseline's LiDAR), each UAV's 4, and the world,
+// transport, monitors and fault watches.
+inline constexpr std::size_t kMaxTasksPerExecutor = 3 * kMaxUgvs + 4 * kMaxUavs + 8;
 inline constexpr std::size_t kMaxSubscriptions = 8 * kMaxUgvs;         // per transport instance
 inline constexpr std::size_t kLoopbackMaxInFlight = 16 * kMaxUgvs;     // samples held
 inline constexpr std::size_t kLoopbackMaxDeliveries = 256 * kMaxUgvs;  // (sample, reader) pending
