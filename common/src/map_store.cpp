@@ -36,14 +36,14 @@ void MapStore::recount() {
     // Every cell unknown first, so a cell's count is the number of disc cells inside the grid:
     // the whole disc away from the edges (stamping all 160 000 cells took ~10 ms per robot).
     const int reach = predict_disc_.reach;
-    near_unknown_.fill(static_cast<std::uint16_t>(predict_disc_.cells));
+    near_unknown_.fill(static_cast<std::uint8_t>(predict_disc_.cells));
     for (int y = 0; y < g.cells_y(); ++y) {
       const bool edge_row = y < reach || y >= g.cells_y() - reach;
       for (int x = 0; x < g.cells_x(); ++x) {
         if (!edge_row && x >= reach && x < g.cells_x() - reach) continue;
         int inside = 0;
         each_span({x, y}, predict_disc_, [&](std::size_t, int cells) { inside += cells; });
-        near_unknown_[g.index(CellIndex{x, y})] = static_cast<std::uint16_t>(inside);
+        near_unknown_[g.index(CellIndex{x, y})] = static_cast<std::uint8_t>(inside);
       }
     }
   }
@@ -97,12 +97,18 @@ void MapStore::make_disc(double radius_m, Disc& out) {
   }
 }
 
+int MapStore::disc_cells(double radius_m) {
+  Disc d;
+  make_disc(radius_m, d);
+  return d.cells;
+}
+
 void MapStore::stamp(CellIndex c, const Disc& disc, Counts& counts, int delta) {
   int newly = 0;  // counts that became 1
   each_span(c, disc, [&](std::size_t first, int cells) {
-    std::uint16_t* row = &counts[first];
+    std::uint8_t* row = &counts[first];
     for (int i = 0; i < cells; ++i) {
-      row[i] = static_cast<std::uint16_t>(row[i] + delta);
+      row[i] = static_cast<std::uint8_t>(row[i] + delta);
       newly += row[i] == 1 ? 1 : 0;
     }
   });

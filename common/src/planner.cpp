@@ -106,11 +106,9 @@ bool Planner::search(CellIndex start, CellIndex goal) {
   seen_[s] = generation_;
   g_[s] = 0.0F;
   f_[s] = octile(start, goal);
-  parent_[s] = -1;
+  parent_[s] = kNoParent;
   heap_push(s);
   expansions_ = 0;
-  static constexpr int kDx[8] = {1, -1, 0, 0, 1, 1, -1, -1};
-  static constexpr int kDy[8] = {0, 0, 1, -1, 1, -1, 1, -1};
   while (heap_size_ > 0) {
     const std::int32_t cur = heap_pop();
     if (cur == t) return true;
@@ -134,12 +132,12 @@ bool Planner::search(CellIndex start, CellIndex goal) {
         seen_[ni] = generation_;
         g_[ni] = cost;
         f_[ni] = cost + octile(n, goal);
-        parent_[ni] = cur;
+        parent_[ni] = static_cast<std::uint8_t>(k);
         heap_push(ni);
       } else if (heap_pos_[ni] >= 0 && cost < g_[ni]) {
         f_[ni] -= g_[ni] - cost;
         g_[ni] = cost;
-        parent_[ni] = cur;
+        parent_[ni] = static_cast<std::uint8_t>(k);
         heap_decrease(ni);
       }
     }
@@ -219,14 +217,18 @@ PlanResult Planner::plan(const MapStore& map, const Vec2& start, const Vec2& goa
   grid_cost_m_ = static_cast<double>(g_[g.index(t)]) * g.resolution();
 
   // Walk back from the goal, then keep the first kMaxPathPoints cells from the start.
-  std::size_t length = 0;
-  for (std::int32_t i = static_cast<std::int32_t>(g.index(t)); i >= 0; i = parent_[i])
+  const auto back = [&](CellIndex c) {
+    const std::uint8_t k = parent_[g.index(c)];
+    return k == kNoParent ? c : CellIndex{c.x - kDx[k], c.y - kDy[k]};
+  };
+  std::size_t length = 1;
+  for (CellIndex c = t; c != s && length <= limits::kGridCells2d; c = back(c))
     ++length;
   const std::size_t kept = std::min(length, cells_.capacity());
   (void)cells_.resize(kept);
   std::size_t pos = length;
-  for (std::int32_t i = static_cast<std::int32_t>(g.index(t)); i >= 0; i = parent_[i]) {
-    if (--pos < kept) cells_[pos] = g.cell_at(static_cast<std::size_t>(i));
+  for (CellIndex c = t; pos > 0; c = back(c)) {
+    if (--pos < kept) cells_[pos] = c;
   }
   // The robot's own position and the goal are the ends (they may lie in an escaped cell).
   const Vec2 end = kept == length ? goal : g.center_of(cells_.back());

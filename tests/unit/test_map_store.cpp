@@ -48,6 +48,16 @@ TEST_F(MapStoreTest, AWholeMapOfFreeCellsUnblocksEveryCellUpToTheEdges) {
   }
 }
 
+TEST(MapStoreDiscs, EveryCountFitsInItsEightBits) {
+  // A cell's count is how many occupied (or unknown) cells its disc holds: 8 bits each, so the
+  // largest disc must hold fewer than 256 cells, and a larger radius is clamped to it.
+  EXPECT_LT(MapStore::disc_cells(100.0), 256);
+  EXPECT_EQ(MapStore::disc_cells(100.0),
+            MapStore::disc_cells(MapStore::kMaxInflationCells * limits::kGridResolution_m));
+  EXPECT_GT(MapStore::disc_cells(0.4), MapStore::disc_cells(0.25));
+  EXPECT_EQ(MapStore::disc_cells(0.0), 9);  // the cell and its 8 neighbours (any overlap)
+}
+
 TEST_F(MapStoreTest, MergesAPatchAndInflatesBothViews) {
   const Vec2 obstacle(0.05, 0.05);  // the centre of cell (200, 200)
   ASSERT_TRUE(test::fill_map(*map, -3, -3, 3, 3, [&](const Vec2& p) {

@@ -143,6 +143,21 @@ TEST_F(PlannerTest, EscapesFromAnInflatedStartAndPlansAroundAnotherRobot) {
   }
 }
 
+TEST_F(PlannerTest, AnotherRobotsDiscDoesNotComeBackWhenTheStampsWrap) {
+  // The per-cell stamps are 16 bits: 65 536 plans after a disc was stamped, its stamp is the
+  // search's again. The wrap clears them, so the disc of the first plan does not block the one
+  // 65 536 plans later (were they not cleared, it would: the straight line ran through it).
+  const DiscObstacle other{Vec2(0.0, 0.0), 1.0};
+  const Vec2 a(0.0, -3.0), b(0.0, 3.0);
+  ASSERT_EQ(planner->plan(*map, a, b, {&other, 1}, path), PlanResult::kOk);
+  ASSERT_GT(path.waypoints.size(), 2u);  // round the disc
+  for (int i = 1; i < 65'535; ++i)
+    ASSERT_EQ(planner->plan(*map, a, a, {}, path), PlanResult::kOk);  // start == goal: cheap
+  ASSERT_EQ(planner->plan(*map, a, b, {}, path), PlanResult::kOk);
+  EXPECT_EQ(path.waypoints.size(), 2u);
+  EXPECT_NEAR(path.length_m, 6.0, 1e-9);
+}
+
 TEST_F(PlannerTest, TrajectoryRespectsSpeedAccelerationAndTurnRateLimits) {
   ASSERT_TRUE(test::fill_map(*map, -8, -5, 8, 5, wall_with_gap));
   ASSERT_EQ(planner->plan(*map, Vec2(-3, -3), Vec2(-2, 3), {}, path), PlanResult::kOk);

@@ -73,11 +73,12 @@ bool better(const FleetProblem& p, const FleetCost& a, const FleetCost& b, bool 
               {b.lateness_s, b.travel_s + cb, 0.0, true});
 }
 
-FleetScheduler::FleetScheduler(const FleetSchedulerConfig& config)
+FleetScheduler::FleetScheduler(const FleetSchedulerConfig& config, ExactLabels* labels)
     : config_(config),
       scheduler_(SchedulerConfig{.exact_max_stops = config.route_exact_max_stops,
                                  .work_budget = config.route_budget_min,
-                                 .seed = config.seed}) {}
+                                 .seed = config.seed},
+                 labels) {}
 
 const FleetResult& FleetScheduler::solve(const FleetProblem& problem, const FleetRoutes* warm) {
   work_ = 0;

@@ -189,8 +189,8 @@ void Mapper::prepare(const Pose3& sensor, const hal::LidarScanView& scan, int to
   const std::size_t stride_y = static_cast<std::size_t>(g.cells_x());
   const std::size_t stride_z = stride_y * static_cast<std::size_t>(g.cells_y());
   const std::size_t from = chunk.first, to = chunk.last;
-  std::array<std::uint32_t*, 3> lists{ends_[kLow].data() + from, ends_[kHigh].data() + from,
-                                      ends_[kSlice].data() + from};
+  std::array<RayId*, 3> lists{ends_[kLow].data() + from, ends_[kHigh].data() + from,
+                              ends_[kSlice].data() + from};
   std::array<std::uint32_t, 3> count{};
   std::uint64_t outside = 0;
   // The loop runs for every ray of every scan: scalar arithmetic in the order Eigen's would do
@@ -253,7 +253,7 @@ void Mapper::prepare(const Pose3& sensor, const hal::LidarScanView& scan, int to
                                            static_cast<std::size_t>(v.x));
     const int along = cut.axis == 0 ? v.x : v.y;
     const End end = along < cut.cell ? kLow : (along > cut.cell ? kHigh : kSlice);
-    lists[end][count[end]++] = static_cast<std::uint32_t>(k);
+    lists[end][count[end]++] = static_cast<RayId>(k);
   }
   chunk.count = count;
   chunk.rays_outside = outside;
@@ -285,14 +285,14 @@ void Mapper::merge_and_hit(End end, Part& part, Bits& bits) {
   std::uint64_t* const touched = bits.touched.data();
   const Ray* const rays = rays_.data();
   for (Chunk& chunk : chunks_) {  // in scan order
-    const std::span<std::uint32_t> list = ends_of(end, chunk);
-    std::uint32_t* const ids = list.data();
+    const std::span<RayId> list = ends_of(end, chunk);
+    RayId* const ids = list.data();
     const std::size_t n = list.size();
     // Kept or merged is a coin toss from ray to ray: written without a branch (always store,
     // count only the kept), since a mispredicted branch per ray cost more than the loop's work.
     std::size_t kept = 0;
     for (std::size_t j = 0; j < n; ++j) {
-      const std::uint32_t k = ids[j];
+      const RayId k = ids[j];
       const std::uint32_t v = rays[k].voxel;
       const bool first = !test_bit(ended, v);
       set_bit(ended, v);
@@ -321,7 +321,7 @@ void Mapper::trace_half(const Vec3& origin, Cut cut, int side, Part& part, Bits&
   merge_and_hit(end, part, bits);
   const VoxelLayer slice{cut.axis, cut.cell};
   for (const Chunk& chunk : chunks_) {
-    for (const std::uint32_t k : ends_of(end, chunk)) {
+    for (const RayId k : ends_of(end, chunk)) {
       const Ray& ray = rays_[k];
       Runs runs;
       if (trace(ray.end, origin, slice, true, ray.hit, ray.weak, runs, part, bits)) {
@@ -427,7 +427,7 @@ void Mapper::insert_scan(const Pose3& sensor, const hal::LidarScanView& scan) {
   Bits& bits = bits_[0];
   merge_and_hit(kSlice, serial, bits);
   for (const Chunk& chunk : chunks_) {
-    for (const std::uint32_t k : ends_of(kSlice, chunk)) {
+    for (const RayId k : ends_of(kSlice, chunk)) {
       Runs runs;
       (void)trace(rays_[k].end, sensor.p, VoxelLayer{}, true, rays_[k].hit, rays_[k].weak, runs,
                   serial, bits);

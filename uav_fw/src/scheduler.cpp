@@ -237,20 +237,21 @@ bool Scheduler::solve_exact(const ScheduleProblem& p, bool hard, const RouteCost
           const std::size_t ps =
               static_cast<std::size_t>(prev_mask) * kExactMaxStops + static_cast<std::size_t>(prev);
           const double leg = p.travel[prev + 1][node];
-          for (std::uint32_t i = state_begin_[ps]; i < state_begin_[ps] + state_count_[ps]; ++i) {
-            const Label& l = pool_[i];
+          for (std::uint32_t i = labels_.state_begin[ps];
+               i < labels_.state_begin[ps] + labels_.state_count[ps]; ++i) {
+            const Label& l = labels_.pool[i];
             const double a = std::max(p.ready[node], l.arrival + leg);
             offer({l.lateness + p.weight[node] * std::max(0.0, a - p.due[node]), a, l.travel + leg,
                    i, node});
           }
         }
       }
-      if (used + count > kPool) return false;  // out of label memory: not proven
+      if (used + count > ExactLabels::kPool) return false;  // out of label memory: not proven
       const std::size_t st =
           static_cast<std::size_t>(mask) * kExactMaxStops + static_cast<std::size_t>(last);
-      state_begin_[st] = static_cast<std::uint32_t>(used);
-      state_count_[st] = static_cast<std::uint8_t>(count);
-      std::copy_n(front, count, pool_.begin() + static_cast<std::ptrdiff_t>(used));
+      labels_.state_begin[st] = static_cast<std::uint32_t>(used);
+      labels_.state_count[st] = static_cast<std::uint8_t>(count);
+      std::copy_n(front, count, labels_.pool.begin() + static_cast<std::ptrdiff_t>(used));
       used += count;
     }
   }
@@ -260,8 +261,9 @@ bool Scheduler::solve_exact(const ScheduleProblem& p, bool hard, const RouteCost
   for (int last = 0; last < n; ++last) {
     const std::size_t st =
         static_cast<std::size_t>(full) * kExactMaxStops + static_cast<std::size_t>(last);
-    for (std::uint32_t i = state_begin_[st]; i < state_begin_[st] + state_count_[st]; ++i) {
-      const Label& l = pool_[i];
+    for (std::uint32_t i = labels_.state_begin[st];
+         i < labels_.state_begin[st] + labels_.state_count[st]; ++i) {
+      const Label& l = labels_.pool[i];
       RouteCost c{l.lateness, l.travel, 0.0, true};
       if (p.closed) {
         const double home = p.travel[l.node][0];
@@ -281,8 +283,8 @@ bool Scheduler::solve_exact(const ScheduleProblem& p, bool hard, const RouteCost
   if (proven != nullptr) *proven = best == kNone && !truncated;
   if (best == kNone) return false;
   StaticVector<std::uint8_t, kMaxStops> reversed;
-  for (std::uint32_t i = best; i != kNone; i = pool_[i].parent)
-    (void)reversed.push_back(pool_[i].node);
+  for (std::uint32_t i = best; i != kNone; i = labels_.pool[i].parent)
+    (void)reversed.push_back(labels_.pool[i].node);
   StaticVector<std::uint8_t, kMaxStops> order;
   for (std::size_t i = reversed.size(); i-- > 0;)
     (void)order.push_back(reversed[i]);
@@ -304,8 +306,10 @@ bool Scheduler::subset_costs(const ScheduleProblem& p, std::span<RouteCost> cost
       if ((mask & (1U << last)) == 0) continue;
       const std::size_t st =
           static_cast<std::size_t>(mask) * kExactMaxStops + static_cast<std::size_t>(last);
-      for (std::uint32_t i = state_begin_[st]; i < state_begin_[st] + state_count_[st]; ++i) {
-        const RouteCost c{pool_[i].lateness, pool_[i].travel, 0.0, pool_[i].lateness <= kEps};
+      for (std::uint32_t i = labels_.state_begin[st];
+           i < labels_.state_begin[st] + labels_.state_count[st]; ++i) {
+        const RouteCost c{labels_.pool[i].lateness, labels_.pool[i].travel, 0.0,
+                          labels_.pool[i].lateness <= kEps};
         if (better(c, best)) best = c;
       }
     }

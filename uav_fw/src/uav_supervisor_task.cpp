@@ -72,8 +72,8 @@ UavSupervisorTask::UavSupervisorTask(const UavSupervisorConfig& config,
       flight_cutter_(flight_cutter_config(config_)),
       flight_layer_(flight_layer_config(config_)),
       flight_(config_.flight),
-      scheduler_(config.scheduler),
-      fleet_(config.fleet) {
+      scheduler_(config.scheduler, &exact_labels_),
+      fleet_(config.fleet, &exact_labels_) {
   const Duration skew = config.max_future_skew;
   odometry_stamps_ = StampGate({skew, config.max_input_age, true});
   camera_stamps_ = StampGate({skew, config.max_input_age, false});

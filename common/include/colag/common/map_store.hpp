@@ -36,7 +36,11 @@ struct MapStoreCounters {
 
 class MapStore {
  public:
-  static constexpr int kMaxInflationCells = 8;  // 0.8 m at 0.1 m: the disc tables' capacity
+  // 0.7 m at 0.1 m: the disc tables' capacity. The per-cell counts are 8 bits: the largest disc
+  // holds 213 cells (disc_cells), so no count reaches 256.
+  static constexpr int kMaxInflationCells = 7;
+  // Cells of the disc that inflates one cell by radius_m (clamped to kMaxInflationCells).
+  static int disc_cells(double radius_m);
 
   explicit MapStore(const MapStoreConfig& config = {});
 
@@ -94,7 +98,7 @@ class MapStore {
     int cells = 0;
     int reach = 0;  // largest |dx| or |dy|
   };
-  using Counts = std::array<std::uint16_t, limits::kGridCells2d>;
+  using Counts = std::array<std::uint8_t, limits::kGridCells2d>;
   static void make_disc(double radius_m, Disc& out);
   // Calls f(first cell's index, cells) for each row span of `disc` centred on c, clipped to
   // the grid.

@@ -66,16 +66,22 @@ class Planner {
     return f_[a] < f_[b] || (f_[a] == f_[b] && f_[a] - g_[a] < f_[b] - g_[b]);
   }
 
+  // The neighbour from which each cell was reached, as a step: kDx[k], kDy[k] back to it.
+  static constexpr std::uint8_t kNoParent = 0xFF;
+  static constexpr int kDx[8] = {1, -1, 0, 0, 1, 1, -1, -1};
+  static constexpr int kDy[8] = {0, 0, 1, -1, 1, -1, 1, -1};
+
   PlannerConfig config_;
   const MapStore* map_ = nullptr;
-  std::uint32_t generation_ = 0;
+  // Per-cell stamps: 16 bits is enough (a wrap clears them: once in 65 535 plans).
+  std::uint16_t generation_ = 0;
   std::size_t expansions_ = 0;
   double grid_cost_m_ = 0.0;
-  std::array<std::uint32_t, limits::kGridCells2d> seen_{};     // == generation_: g_/f_ valid
-  std::array<std::uint32_t, limits::kGridCells2d> overlay_{};  // == generation_: other UGV
+  std::array<std::uint16_t, limits::kGridCells2d> seen_{};     // == generation_: g_/f_ valid
+  std::array<std::uint16_t, limits::kGridCells2d> overlay_{};  // == generation_: other UGV
   std::array<float, limits::kGridCells2d> g_{};
   std::array<float, limits::kGridCells2d> f_{};
-  std::array<std::int32_t, limits::kGridCells2d> parent_{};
+  std::array<std::uint8_t, limits::kGridCells2d> parent_{};    // step k into it, or kNoParent
   std::array<std::int32_t, limits::kGridCells2d> heap_pos_{};  // -1: closed
   std::array<std::int32_t, limits::kGridCells2d> heap_{};
   std::int32_t heap_size_ = 0;

@@ -94,7 +94,8 @@ struct FleetSchedulerConfig {
 
 class FleetScheduler {
  public:
-  explicit FleetScheduler(const FleetSchedulerConfig& config = {});
+  // `labels`: the exact route solver's memory, shared (Scheduler); own memory without it.
+  explicit FleetScheduler(const FleetSchedulerConfig& config = {}, ExactLabels* labels = nullptr);
   // `warm`: the last plan's routes in this problem's stop numbers (stops out of range or
   // repeated, and routes of vehicles >= p.vehicles, are ignored): the search starts from it.
   const FleetResult& solve(const FleetProblem& p, const FleetRoutes* warm = nullptr);

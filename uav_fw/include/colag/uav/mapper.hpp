@@ -116,6 +116,9 @@ class Mapper {
 
  private:
   static constexpr std::int8_t kUnknown = -128;
+  // A ray's number in the scan (rays_): 16 bits hold every scan the limits allow.
+  using RayId = std::uint16_t;
+  static_assert(limits::kMaxLidarPoints <= 65536);
   struct Ray {
     Vec3 end = Vec3::Zero();  // world frame, cut at the maximum range and at the grid's edge
     std::uint32_t voxel = 0;  // linear index of the end voxel
@@ -150,7 +153,7 @@ class Mapper {
   // What one half of a scan's tracing did (part 0 also counts the serial work on the slice).
   struct alignas(64) Part {  // aligned: the two halves write their own Part at the same time
     struct Resume {
-      std::uint32_t ray = 0;
+      RayId ray = 0;
       std::uint8_t unchanged = 0, crossed = 0;  // the early-stop runs where the ray stopped
     };
     StaticVector<Resume, limits::kMaxLidarPoints> resume;  // rays that reached the slice
@@ -170,7 +173,7 @@ class Mapper {
   void prepare(const Pose3& sensor, const hal::LidarScanView& scan, int top_layers, Cut cut,
                Chunk& chunk);
   // The rays of chunk c that end in `end` (a view into ends_; after prepare).
-  std::span<std::uint32_t> ends_of(End end, const Chunk& c) {
+  std::span<RayId> ends_of(End end, const Chunk& c) {
     return {ends_[end].data() + c.first, c.count[end]};
   }
   // Clears the bits of the layers below `top_layers` that the rays of this scan can reach.
@@ -200,7 +203,7 @@ class Mapper {
   std::array<Bits, 2> bits_;                         // half k's; the slice uses half 0's
   StaticVector<Ray, limits::kMaxLidarPoints> rays_;  // the scan being inserted
   std::array<Chunk, kChunks> chunks_;
-  std::array<std::array<std::uint32_t, limits::kMaxLidarPoints>, 3> ends_;  // see Chunk
+  std::array<std::array<RayId, limits::kMaxLidarPoints>, 3> ends_;  // see Chunk
   std::array<Part, 2> parts_;
   Vec3 last_sensor_ = Vec3::Zero();  // where the previous scan was taken
   int last_axis_ = 1;

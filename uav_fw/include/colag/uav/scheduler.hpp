@@ -22,6 +22,7 @@
 // (serve the smallest deadline first).
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <span>
 
 #include "colag/common/limits.hpp"
@@ -85,9 +86,34 @@ struct SchedulerConfig {
   std::uint64_t seed = 0x5eed;  // of the search's perturbations
 };
 
+// The exact solver's label memory (4 MB): scratch of one solve, nothing in it outlives the solve.
+// The UAV's schedulers (its own and the fleet's) take turns in one loop and share one.
+class ExactLabels {
+ public:
+  struct Label {
+    double lateness, arrival, travel;
+    std::uint32_t parent;  // index in pool, kNone for the first stop
+    std::uint8_t node;
+  };
+  static constexpr std::uint32_t kNone = 0xFFFFFFFFu;
+  static constexpr std::size_t kStates = (std::size_t{1} << kExactMaxStops) * kExactMaxStops;
+  static constexpr std::size_t kPool = std::size_t{1} << 17;
+
+  std::array<Label, kPool> pool;
+  std::array<std::uint32_t, kStates> state_begin;  // per (visited set, last stop): its labels
+  std::array<std::uint8_t, kStates> state_count;
+};
+
 class Scheduler {
  public:
-  explicit Scheduler(const SchedulerConfig& config = {}) : config_(config) {}
+  // `labels`: label memory shared with other schedulers of the same thread (never two solves at
+  // once); without it the scheduler allocates its own here (tests, tools), never in solve().
+  explicit Scheduler(const SchedulerConfig& config = {}, ExactLabels* labels = nullptr)
+      : config_(config),
+        own_(labels == nullptr ? std::make_unique<ExactLabels>() : nullptr),
+        labels_(labels == nullptr ? *own_ : *labels) {}
+  Scheduler(const Scheduler&) = delete;
+  Scheduler& operator=(const Scheduler&) = delete;
   // Returns the best order found; `result.exact` tells whether it is proven optimal. `warm`: the
   // last plan's order in this problem's stop numbers (entries out of range or repeated are
   // ignored): the search continues from it; without it, the same problem gives the same answer.
@@ -103,14 +129,8 @@ class Scheduler {
   bool subset_costs(const ScheduleProblem& p, std::span<RouteCost> costs);
 
  private:
-  struct Label {
-    double lateness, arrival, travel;
-    std::uint32_t parent;  // index in pool_, kNone for the first stop
-    std::uint8_t node;
-  };
-  static constexpr std::uint32_t kNone = 0xFFFFFFFFu;
-  static constexpr std::size_t kStates = (std::size_t{1} << kExactMaxStops) * kExactMaxStops;
-  static constexpr std::size_t kPool = std::size_t{1} << 17;  // 4 MB of labels
+  using Label = ExactLabels::Label;
+  static constexpr std::uint32_t kNone = ExactLabels::kNone;
   static constexpr std::size_t kFront = 32;
 
   // Exact DP. `hard` drops every late label; `bound` (optional) drops every label that cannot
@@ -143,9 +163,8 @@ class Scheduler {
   SchedulerConfig config_;
   ScheduleProblem working_;  // the problem as solved (deadlines relaxed for kNoTimeWindows)
   ScheduleResult result_;
-  std::array<Label, kPool> pool_;
-  std::array<std::uint32_t, kStates> state_begin_;
-  std::array<std::uint8_t, kStates> state_count_;
+  std::unique_ptr<ExactLabels> own_;
+  ExactLabels& labels_;
   // heuristic scratch
   StaticVector<std::uint8_t, kMaxStops> route_, candidate_, best_, search_;
   // The last solve's plan and the route its search went on from (warm starts resume from it).

@@ -249,6 +249,7 @@ class UavSupervisorTask {
   MapSharer flight_cutter_;  // cuts flight-altitude patches for the flight layer
   MapStore flight_layer_;
   FlightPlanner flight_;
+  ExactLabels exact_labels_;  // the two schedulers' (both run in the scheduling loop)
   Scheduler scheduler_;
   ScheduleProblem problem_;
   ScheduleResult schedule_;
