@@ -41,7 +41,9 @@ int run_safety(const SafetyOptions& o) {
     // The paper's two maps, and a field of taller, thinner pillars of several sizes.
     for (const char* scen : {"sparse", "dense", "pillars"}) {
       const bool pillars = std::string(scen) == "pillars";
-      for (int n : {3, 5, pillars ? 8 : 7}) {
+      const std::vector<int> counts =
+          o.ugvs.empty() ? std::vector<int>{3, 5, pillars ? 8 : 7} : o.ugvs;
+      for (const int n : counts) {
         if (o.quick && (std::string(scen) != "dense" || n != 3)) continue;
         for (int s = 1; s <= (o.quick ? 1 : o.seeds); ++s) {
           MissionRun r;
@@ -63,8 +65,14 @@ int run_safety(const SafetyOptions& o) {
   std::ofstream csv(o.csv);
   csv << "faults,scenario,ugvs,seed,ok,all_reached,collisions,reached_ugvs,min_clearance_m,"
          "reach_time_s,waiting_time_s,max_waiting_time_s,nees_min_ugv,nees_max_ugv\n";
-  std::printf(
-      "\nSafety under faults (maps sparse+dense x 3/5/7 UGVs, pillars x 3/5/8, x seeds):\n");
+  std::string sizes = "sparse+dense x 3/5/7 UGVs, pillars x 3/5/8";
+  if (!o.ugvs.empty()) {
+    sizes = "sparse+dense+pillars x ";
+    for (std::size_t i = 0; i < o.ugvs.size(); ++i)
+      sizes += (i > 0 ? "/" : "") + std::to_string(o.ugvs[i]);
+    sizes += " UGVs";
+  }
+  std::printf("\nSafety under faults (maps %s, x seeds):\n", sizes.c_str());
   std::printf("%-16s %8s %10s %12s %14s %9s %8s %8s %12s\n", "faults", "missions", "collisions",
               "UGVs reached", "min clear. m", "reach s", "wait s", "max wait", "NEES in 1-6");
   int failed = 0, total_collisions = 0;

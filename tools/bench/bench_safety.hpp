@@ -3,6 +3,7 @@
 // a colag_sim process with fault injection), reporting per fault setting the collisions, the
 // minimum clearance, the reach rate and the waiting time; every mission also goes to CSV.
 #include <string>
+#include <vector>
 
 namespace colag::programs {
 
@@ -14,6 +15,8 @@ struct SafetyOptions {
   bool quick = false;  // dense, 3 UGVs, two fault settings, one seed: a smoke run
   std::string sim;
   std::string world = "ideal";  // colag_sim --world: ideal, field or a YAML file
+  // UGV counts to fly on every map; empty: 3, 5, 7 (pillars 3, 5, 8).
+  std::vector<int> ugvs;
 };
 
 int run_safety(const SafetyOptions& options);

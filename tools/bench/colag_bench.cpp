@@ -86,6 +86,10 @@ int run(int argc, char** argv) {
   safety->add_option("--sim", sopt.sim, "colag_sim to run (default: next to colag_bench)");
   safety->add_flag("--quick", sopt.quick, "dense, 3 UGVs, two fault settings, one seed");
   safety->add_option("--world", sopt.world, "ideal, field, or a YAML scenario file");
+  safety
+      ->add_option("--ugvs", sopt.ugvs,
+                   "UGV counts flown on every map (default 3 5 7, pillars 3 5 8)")
+      ->check(CLI::Range(1, static_cast<int>(limits::kMaxUgvs)));
   auto* speed = app.add_subcommand(
       "speed", "the real-time factor of one mission (default dense, 7 UGVs, seed 1), N runs");
   programs::SpeedOptions popt;
