@@ -125,6 +125,27 @@ TEST(Mission, ALongSiteIsCrossedWithMapsThatMoveWithTheRobots) {
     EXPECT_GE(u.traj_length_m, 85.0 - u.goal_distance_m - 0.01) << "UGV " << u.id;
 }
 
+TEST(Mission, SelfPerceptionBaselineUgvsKeepClearOfEachOther) {
+  // The baseline the tables compare against (each UGV its own LiDAR and true pose, no UAV): its
+  // UGVs hear of each other as ColAG's do, relayed per UGV. Without the relay (UGVs heard of
+  // each other only from a UAV) UGVs 0 and 2 drove into each other here at 20 s.
+  MissionConfig cfg;
+  cfg.scenario = "dense";
+  cfg.ugvs = 3;
+  cfg.seed = 1;
+  cfg.self_perception = true;
+  cfg.max_time_s = 40;  // past the contact (the whole mission: colag_bench tables)
+  std::string error;
+  ASSERT_TRUE(world_from_name("field", cfg.world, error)) << error;
+  const MissionOutcome o = run(cfg);
+  EXPECT_EQ(o.collisions, 0);
+  for (const UgvOutcome& u : o.ugvs) {
+    EXPECT_FALSE(u.collided) << "UGV " << u.id;
+    EXPECT_GT(u.min_clearance_m, 0.0) << "UGV " << u.id;
+    EXPECT_GT(u.traj_length_m, 10.0) << "UGV " << u.id;  // they drove, not stood
+  }
+}
+
 TEST(Mission, WithoutRelativePoseUpdatesTheBlindUgvsDoNotMakeIt) {
   // The paper's ablation: RPE only initialises the estimator. Wheel odometry alone drifts; the
   // UGVs either stop for good (our predictor sees the growing uncertainty) or collide.

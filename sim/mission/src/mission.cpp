@@ -17,6 +17,7 @@
 #include "colag/uav/clock_server.hpp"
 #include "colag/uav/map_sharer.hpp"
 #include "colag/uav/mapper.hpp"
+#include "colag/uav/nearby_relay.hpp"
 #include "colag/uav/team_filter.hpp"
 #include "colag/uav/uav_supervisor_task.hpp"
 #include "colag/ugv/ugv_nav_task.hpp"
@@ -61,22 +62,51 @@ class WorldTask final : public platform::Task {
 };
 
 // Self-perception baseline: a fixed reference frame at the origin stands in for the UAV, so the
-// UGV's own estimator gets its true pose; each UGV maps with its own LiDAR.
+// UGV's own estimator gets its true pose; each UGV maps with its own LiDAR. The UGVs hear of
+// each other as they do with a UAV: their statuses, relayed to each UGV every 100 ms
+// (uav/nearby_relay.hpp); without it they planned and predicted blind to each other and drove
+// into each other.
 class ReferenceFrameTask final : public platform::Task {
  public:
   explicit ReferenceFrameTask(platform::Transport& t) : transport_(t) {}
   const char* name() const override { return "reference"; }
-  Status init(TimePoint) override { return clock_.attach(transport_, 0); }
+  Status init(TimePoint) override {
+    if (Status s = clock_.attach(transport_, 0); !s) return s;
+    return statuses_in_.attach(transport_);
+  }
   void step(TimePoint now) override {
     clock_.step(now);  // the UGVs' fleet time is this stand-in's clock
     msg::UavOdometry od;
     od.stamp = now;
     (void)transport_.publish(od);
+    msg::UgvStatus s;
+    while (statuses_in_.pop(s)) {
+      if (s.ugv_id < limits::kMaxUgvs) ugvs_[s.ugv_id] = {true, now, s};
+    }
+    if (!elapsed(now, relayed_, 100ms)) return;
+    relayed_ = now;
+    const uav::UavSupervisorConfig relay;  // the UAV's relay settings
+    for (RobotId to = 0; to < limits::kMaxUgvs; ++to) {
+      if (!ugvs_[to].known || now - ugvs_[to].heard > relay.status_timeout) continue;
+      uav::fill_nearby(to, ugvs_, now, relay.nearby, nearby_);
+      nearby_.stamp = now;
+      ++nearby_.seq;
+      (void)transport_.publish(nearby_);
+    }
   }
 
  private:
+  struct Ugv {
+    bool known = false;
+    TimePoint heard{};
+    msg::UgvStatus status;
+  };
   platform::Transport& transport_;
   uav::ClockServer clock_;
+  platform::QueueReader<msg::UgvStatus, 4 * limits::kMaxUgvs> statuses_in_;
+  std::array<Ugv, limits::kMaxUgvs> ugvs_{};
+  msg::NearbyUgvs nearby_;
+  TimePoint relayed_ = kNever;
 };
 
 class SelfPerceptionTask final : public platform::Task {
