@@ -237,8 +237,7 @@ bool Scheduler::solve_exact(const ScheduleProblem& p, bool hard, const RouteCost
           const std::size_t ps =
               static_cast<std::size_t>(prev_mask) * kExactMaxStops + static_cast<std::size_t>(prev);
           const double leg = p.travel[prev + 1][node];
-          for (std::uint32_t i = labels_.state_begin[ps];
-               i < labels_.state_begin[ps] + labels_.state_count[ps]; ++i) {
+          for (std::uint32_t i = labels_.first(ps); i < labels_.end(ps); ++i) {
             const Label& l = labels_.pool[i];
             const double a = std::max(p.ready[node], l.arrival + leg);
             offer({l.lateness + p.weight[node] * std::max(0.0, a - p.due[node]), a, l.travel + leg,
@@ -261,8 +260,7 @@ bool Scheduler::solve_exact(const ScheduleProblem& p, bool hard, const RouteCost
   for (int last = 0; last < n; ++last) {
     const std::size_t st =
         static_cast<std::size_t>(full) * kExactMaxStops + static_cast<std::size_t>(last);
-    for (std::uint32_t i = labels_.state_begin[st];
-         i < labels_.state_begin[st] + labels_.state_count[st]; ++i) {
+    for (std::uint32_t i = labels_.first(st); i < labels_.end(st); ++i) {
       const Label& l = labels_.pool[i];
       RouteCost c{l.lateness, l.travel, 0.0, true};
       if (p.closed) {
@@ -306,8 +304,7 @@ bool Scheduler::subset_costs(const ScheduleProblem& p, std::span<RouteCost> cost
       if ((mask & (1U << last)) == 0) continue;
       const std::size_t st =
           static_cast<std::size_t>(mask) * kExactMaxStops + static_cast<std::size_t>(last);
-      for (std::uint32_t i = labels_.state_begin[st];
-           i < labels_.state_begin[st] + labels_.state_count[st]; ++i) {
+      for (std::uint32_t i = labels_.first(st); i < labels_.end(st); ++i) {
         const RouteCost c{labels_.pool[i].lateness, labels_.pool[i].travel, 0.0,
                           labels_.pool[i].lateness <= kEps};
         if (better(c, best)) best = c;

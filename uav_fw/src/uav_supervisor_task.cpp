@@ -608,15 +608,10 @@ void UavSupervisorTask::publish_plan(TimePoint now, bool changed) {
 }
 
 void UavSupervisorTask::relay_nearby(TimePoint now) {
-  for (RobotId to = 0; to < limits::kMaxUgvs; ++to) {
-    const Ugv& u = ugvs_[to];
-    if (!u.known || now - u.heard > config_.status_timeout) continue;
-    fill_nearby(to, ugvs_, now, config_.nearby, nearby_);
-    nearby_.stamp = now;
-    nearby_.uav_id = config_.id;
-    ++nearby_.seq;
-    if (transport_.publish(nearby_)) ++health_.nearby_sent;
-  }
+  nearby_.uav_id = config_.id;
+  health_.nearby_sent += static_cast<std::uint64_t>(uav::relay_nearby(
+      ugvs_, now, config_.status_timeout, config_.nearby, nearby_,
+      [&](const msg::NearbyUgvs& m) { return static_cast<bool>(transport_.publish(m)); }));
 }
 
 void UavSupervisorTask::scheduling_step(TimePoint now) {

@@ -86,13 +86,9 @@ class ReferenceFrameTask final : public platform::Task {
     if (!elapsed(now, relayed_, 100ms)) return;
     relayed_ = now;
     const uav::UavSupervisorConfig relay;  // the UAV's relay settings
-    for (RobotId to = 0; to < limits::kMaxUgvs; ++to) {
-      if (!ugvs_[to].known || now - ugvs_[to].heard > relay.status_timeout) continue;
-      uav::fill_nearby(to, ugvs_, now, relay.nearby, nearby_);
-      nearby_.stamp = now;
-      ++nearby_.seq;
-      (void)transport_.publish(nearby_);
-    }
+    (void)uav::relay_nearby(
+        ugvs_, now, relay.status_timeout, relay.nearby, nearby_,
+        [&](const msg::NearbyUgvs& m) { return static_cast<bool>(transport_.publish(m)); });
   }
 
  private:

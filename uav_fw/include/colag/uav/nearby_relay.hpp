@@ -60,4 +60,20 @@ void fill_nearby(RobotId to, const Ugvs& ugvs, TimePoint now, const NearbyRelayC
   }
 }
 
+// Every UGV heard within `timeout` gets its list (fill_nearby), stamped `now`, through
+// `publish(out)` (true when sent); returns how many were sent. One pass of the relay.
+template <class Ugvs, class Publish>
+int relay_nearby(const Ugvs& ugvs, TimePoint now, Duration timeout, const NearbyRelayConfig& config,
+                 msg::NearbyUgvs& out, Publish&& publish) {
+  int sent = 0;
+  for (std::size_t to = 0; to < ugvs.size(); ++to) {
+    if (!ugvs[to].known || now - ugvs[to].heard > timeout) continue;
+    fill_nearby(static_cast<RobotId>(to), ugvs, now, config, out);
+    out.stamp = now;
+    ++out.seq;
+    sent += publish(out) ? 1 : 0;
+  }
+  return sent;
+}
+
 }  // namespace colag::uav

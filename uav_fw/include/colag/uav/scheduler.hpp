@@ -102,6 +102,9 @@ class ExactLabels {
   std::array<Label, kPool> pool;
   std::array<std::uint32_t, kStates> state_begin;  // per (visited set, last stop): its labels
   std::array<std::uint8_t, kStates> state_count;
+  // State st's labels: pool[first(st)] up to pool[end(st)].
+  std::uint32_t first(std::size_t st) const { return state_begin[st]; }
+  std::uint32_t end(std::size_t st) const { return state_begin[st] + state_count[st]; }
 };
 
 class Scheduler {
