@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <vector>
 
 #include "colag/common/random.hpp"
@@ -254,15 +255,53 @@ TEST(UgvEkf, CovarianceGrowthMatchesTheClosedFormOnAStraightLine) {
   for (int k = 1; k <= n; ++k)
     ASSERT_TRUE(ekf.predict(TimePoint{k * kOdomPeriod}, v, 0.0));
   // With yaw = 0: P_xx = n sv^2 dt^2, P_tt = n q, P_yt = v dt q n(n-1)/2,
-  // P_yy = v^2 dt^2 q (n-1) n (2n-1) / 6, with q = sw^2 dt^2.
+  // P_yy = v^2 dt^2 q (n-1) n (2n-1) / 6, with q = sw^2 dt^2 (the linearised model);
+  // along the path (x) the heading's second-order shortfall adds sqrt(3)/2 P_tt v dt to the
+  // standard deviation at each step: sqrt(P_xx) between its sum and the sum plus the
+  // first-order sqrt(n) sv dt.
   const double q = sw * sw * dt * dt;
   const Mat3 P = ekf.covariance();
-  EXPECT_NEAR(P(0, 0), n * sv * sv * dt * dt, 1e-12);
+  const double shortfall = 0.5 * std::sqrt(3.0) * v * dt * q * n * (n + 1) / 2.0;
+  EXPECT_GE(std::sqrt(P(0, 0)), shortfall);
+  EXPECT_LE(std::sqrt(P(0, 0)), shortfall + std::sqrt(n * sv * sv * dt * dt) + 1e-12);
   EXPECT_NEAR(P(2, 2), n * q, 1e-12);
   EXPECT_NEAR(P(1, 2), v * dt * q * n * (n - 1) / 2.0, 1e-10);
   EXPECT_NEAR(P(1, 1), v * v * dt * dt * q * (n - 1.0) * n * (2.0 * n - 1) / 6.0, 1e-9);
   EXPECT_NEAR(P(0, 1), 0.0, 1e-12);
   EXPECT_NEAR(ekf.mean().x(), v * n * dt, 1e-9);
+}
+
+// A robot that starts with its heading known to 0.3 rad only and drives 4 m blind ends up
+// d (1 - cos e) short of where the filter thinks, for its true heading error e: never longer.
+// The linearised covariance knows nothing of it (0.02 m along the path, from the wheels'
+// noise); the filter's along-path standard deviation must cover its rms over e ~ N(0, 0.3^2),
+// here 0.30 m.
+TEST(UgvEkf, AnUncertainHeadingWidensTheCovarianceAlongThePath) {
+  UgvEkf ekf(white_noise_config());
+  const double sigma_yaw = 0.3;
+  Mat3 r = Mat3::Identity() * 1e-6;
+  r(2, 2) = sigma_yaw * sigma_yaw;
+  ASSERT_EQ(ekf.update({TimePoint{}, {Vec2(0, 0), 0.0}, r}), UgvEkf::Update::kInitialized);
+  const double v = 0.5, dt = 0.02;
+  const int n = 400;  // 4 m
+  for (int k = 1; k <= n; ++k)
+    ASSERT_TRUE(ekf.predict(TimePoint{k * kOdomPeriod}, v, 0.0));
+  const double d = v * dt * n;
+  // E[(d (1 - cos e))^2] over the heading's Gaussian, by quadrature over +-6 sigma.
+  double mean_sq = 0.0, weight = 0.0;
+  for (int i = -600; i <= 600; ++i) {
+    const double e = sigma_yaw * i / 100.0;
+    const double w = std::exp(-0.5 * (i / 100.0) * (i / 100.0));
+    mean_sq += w * std::pow(d * (1.0 - std::cos(e)), 2);
+    weight += w;
+  }
+  const double rms_shortfall = std::sqrt(mean_sq / weight);
+  EXPECT_NEAR(rms_shortfall, 0.30, 0.01);
+  EXPECT_GE(std::sqrt(ekf.covariance()(0, 0)), rms_shortfall);
+  // and not far beyond it (the wheels' own noise adds 0.02 m): room to drive stays.
+  EXPECT_LE(std::sqrt(ekf.covariance()(0, 0)), 1.3 * rms_shortfall);
+  // Across the path the linearisation holds: sigma_yaw d, as before.
+  EXPECT_NEAR(std::sqrt(ekf.covariance()(1, 1)), sigma_yaw * d, 0.02);
 }
 
 TEST(UgvEkf, RejectsAMeasurementFarOutsideTheGateThenResetsIfItPersists) {
