@@ -52,6 +52,18 @@ int returns_near(const hal::LidarScanView& scan, const Pose3& sensor, const Vec2
   return n;
 }
 
+// Occupied voxels above the ground layer around a UGV's body at `where`.
+int occupied_around(const Mapper& map, const Vec2& where) {
+  int n = 0;
+  for (double z = 0.15; z < 0.45; z += 0.1) {
+    for (double y = -0.35; y < 0.4; y += 0.1) {
+      for (double x = -0.35; x < 0.4; x += 0.1)
+        n += map.state(Vec3(where.x() + x, where.y() + y, z)) == VoxelState::kOccupied ? 1 : 0;
+    }
+  }
+  return n;
+}
+
 hal::LidarPoint at(const Vec3& world, const Vec3& sensor) {
   const Vec3 d = world - sensor;
   return {static_cast<float>(d.x()), static_cast<float>(d.y()), static_cast<float>(d.z())};
@@ -154,16 +166,7 @@ TEST(TeamFilter, ForgetsTheBodyMappedBeforeTheUgvWasLocated) {
   const auto map_owner = std::make_unique<Mapper>();  // too big for the stack
   Mapper& map = *map_owner;
   TeamFilter filter;
-  const auto body_occupied = [&] {  // voxels above the ground layer, around the body
-    int n = 0;
-    for (double z = 0.15; z < 0.45; z += 0.1) {
-      for (double y = -0.35; y < 0.4; y += 0.1) {
-        for (double x = -0.35; x < 0.4; x += 0.1)
-          n += map.state(Vec3(where.x() + x, where.y() + y, z)) == VoxelState::kOccupied ? 1 : 0;
-      }
-    }
-    return n;
-  };
+  const auto body_occupied = [&] { return occupied_around(map, where); };
   Pose3 sensor;
   hal::LidarScanView s = f.scan(sensor);
   filter.begin();  // nobody located
@@ -182,6 +185,45 @@ TEST(TeamFilter, ForgetsTheBodyMappedBeforeTheUgvWasLocated) {
   EXPECT_GT(filter.counters().dropped, 0u);
   // The ground around it is still mapped.
   EXPECT_NE(map.state(Vec3(where.x() - 1.0, where.y(), 0.05)), VoxelState::kUnknown);
+}
+
+// Located first 0.85 m from where it stands (an outlying first relative pose), its body is mapped
+// beside the dropped disc; once its estimate is sure enough that hits mapped within
+// body_radius - u of it can only be its body, that body is forgotten.
+TEST(TeamFilter, ForgetsItsBodyAgainWhenAStandingUgvsPositionIsCorrected) {
+  Field f;
+  const Vec2 where(5.0, 0.0), first_fix(5.8, 0.3);
+  f.sim->add_ugv({where, 0.0});
+  const auto map_owner = std::make_unique<Mapper>();
+  Mapper& map = *map_owner;
+  TeamFilter filter;
+  const auto body_occupied = [&] { return occupied_around(map, where); };
+  Pose3 sensor;
+  for (int k = 0; k < 5; ++k) {
+    const hal::LidarScanView s = f.scan(sensor);
+    filter.begin();
+    ASSERT_TRUE(filter.add(0, first_fix, 0.42, 50ms, 0.0, 0.0));
+    map.insert_scan(sensor, filter.apply(s, sensor, map));
+  }
+  ASSERT_GT(body_occupied(), 0);  // the part of its body outside the dropped disc
+  const std::uint64_t located = filter.counters().located;
+  // Nothing is forgotten while the estimate is too uncertain to tell its body from beside it.
+  for (const Vec2& p : {Vec2(5.7, 0.3), Vec2(5.1, 0.1)}) {
+    const hal::LidarScanView s = f.scan(sensor);
+    filter.begin();
+    ASSERT_TRUE(filter.add(0, p, 0.3, 50ms, 0.0, 0.0));
+    map.insert_scan(sensor, filter.apply(s, sensor, map));
+  }
+  EXPECT_EQ(filter.counters().located, located);
+  for (int k = 0; k < 5; ++k) {
+    const hal::LidarScanView s = f.scan(sensor);
+    filter.begin();
+    ASSERT_TRUE(filter.add(0, where, 0.03, 50ms, 0.0, 0.0));
+    map.insert_scan(sensor, filter.apply(s, sensor, map));
+  }
+  EXPECT_EQ(filter.counters().located, located + 1);
+  EXPECT_EQ(filter.counters().own_body, 1u);
+  EXPECT_EQ(body_occupied(), 0);
 }
 
 // Forgetting a body forgets what was hit there, not the air around it that rays crossed.

@@ -332,28 +332,43 @@ void Mapper::trace_half(const Vec3& origin, Cut cut, int side, Part& part, Bits&
   }
 }
 
-std::size_t Mapper::forget(const Vec2& centre, double radius_m, double z_low_m, double z_high_m) {
-  const auto& g = geometry();
-  if (!all_finite(centre) || !(radius_m >= 0.0) || !(z_low_m <= z_high_m)) return 0;
+template <class Map, class Visit>
+void Mapper::for_each_hit(Map& self, const Vec2& centre, double radius_m, double z_low_m,
+                          double z_high_m, Visit&& visit) {
+  const auto& g = self.geometry();
+  if (!all_finite(centre) || !(radius_m >= 0.0) || !(z_low_m <= z_high_m)) return;
   const double r = std::min(radius_m, 1e3);
   const VoxelIndex lo = g.voxel_of(Vec3(centre.x() - r, centre.y() - r, z_low_m));
   const VoxelIndex hi = g.voxel_of(Vec3(centre.x() + r, centre.y() + r, z_high_m));
-  std::size_t known = 0;
   for (int z = std::max(lo.z, 0); z <= std::min(hi.z, g.cells_z() - 1); ++z) {
     for (int y = std::max(lo.y, 0); y <= std::min(hi.y, g.cells_y() - 1); ++y) {
       for (int x = std::max(lo.x, 0); x <= std::min(hi.x, g.cells_x() - 1); ++x) {
         const Vec3 c = g.center_of({x, y, z});
         if ((c.head<2>() - centre).squaredNorm() > r * r || c.z() < z_low_m || c.z() > z_high_m)
           continue;
-        std::int8_t& v = logodds_[g.index({x, y, z})];
+        auto& v = self.logodds_[g.index({x, y, z})];
         if (v == kUnknown || v <= 0) continue;  // seen free more than hit: not a body
-        ++known;
-        v = kUnknown;
+        visit(v);
       }
     }
   }
+}
+
+std::size_t Mapper::forget(const Vec2& centre, double radius_m, double z_low_m, double z_high_m) {
+  std::size_t known = 0;
+  for_each_hit(*this, centre, radius_m, z_low_m, z_high_m, [&](std::int8_t& v) {
+    ++known;
+    v = kUnknown;
+  });
   counters_.voxels_forgotten += known;
   return known;
+}
+
+std::size_t Mapper::count_hit(const Vec2& centre, double radius_m, double z_low_m,
+                              double z_high_m) const {
+  std::size_t n = 0;
+  for_each_hit(*this, centre, radius_m, z_low_m, z_high_m, [&](const std::int8_t&) { ++n; });
+  return n;
 }
 
 void Mapper::insert_scan(const Pose3& sensor, const hal::LidarScanView& scan) {

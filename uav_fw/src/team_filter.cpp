@@ -34,15 +34,21 @@ bool TeamFilter::add(std::size_t id, const Vec2& where, double uncertainty_m, Du
   const Vec2 to = where + speed_mps * travel_s * Vec2(std::cos(yaw_rad), std::sin(yaw_rad));
   const double r = config_.body_radius_m + config_.margin_m + uncertainty_m;
   const Vec2 pad(r, r);
-  (void)capsules_.push_back(
-      {where, to, r, !was_located_.test(id), where.cwiseMin(to) - pad, where.cwiseMax(to) + pad});
+  (void)capsules_.push_back({where, to, r, config_.body_radius_m - uncertainty_m,
+                             !was_located_.test(id), where.cwiseMin(to) - pad,
+                             where.cwiseMax(to) + pad});
   return true;
 }
 
 hal::LidarScanView TeamFilter::apply(const hal::LidarScanView& scan, const Pose3& sensor,
                                      Mapper& map) {
   if (capsules_.empty()) return scan;
-  for (const Capsule& c : capsules_) {
+  for (Capsule& c : capsules_) {
+    if (!c.anew && c.inner > 0.0 &&
+        map.count_hit(c.a, c.inner, config_.ground_top_m, config_.body_top_m) > 0) {
+      ++counters_.own_body;
+      c.anew = true;
+    }
     if (!c.anew) continue;
     ++counters_.located;
     counters_.forgotten += map.forget(0.5 * (c.a + c.b), c.radius + 0.5 * (c.b - c.a).norm(),

@@ -91,6 +91,8 @@ class Mapper {
   // there is no longer believed (a robot turned out to stand there); what was seen free stays
   // free (it was not the robot). Returns how many voxels were forgotten.
   std::size_t forget(const Vec2& centre, double radius_m, double z_low_m, double z_high_m);
+  // How many voxels forget() would forget there (hit more than seen free).
+  std::size_t count_hit(const Vec2& centre, double radius_m, double z_low_m, double z_high_m) const;
 
   // The window of the site this map holds: limits' size, at kWorldGrid3d's place until moved.
   const GridGeometry3d& geometry() const { return geometry_; }
@@ -116,6 +118,10 @@ class Mapper {
 
  private:
   static constexpr std::int8_t kUnknown = -128;
+  // Calls visit(log-odds) for each voxel that forget() and count_hit() consider.
+  template <class Map, class Visit>
+  static void for_each_hit(Map& self, const Vec2& centre, double radius_m, double z_low_m,
+                           double z_high_m, Visit&& visit);
   // A ray's number in the scan (rays_): 16 bits hold every scan the limits allow.
   using RayId = std::uint16_t;
   static_assert(limits::kMaxLidarPoints <= 65536);

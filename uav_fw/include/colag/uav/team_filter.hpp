@@ -10,6 +10,10 @@
 //     tell it): a capsule, not a disc, so a moving UGV is not mapped at its front;
 //   - when it was not located at the previous scan (mission start, back from silence or from a
 //     large uncertainty), what was mapped there is forgotten: it was its body;
+//   - and so it is whenever the map holds a hit within body_radius - u of where it is: only its
+//     body can be there (anything else would be a collision). Its body gets mapped when it was
+//     located at the wrong place: a UGV initialised from an outlying relative pose 0.8 m off
+//     stood beside its own body, mapped as an obstacle, waiting for support for 380 s;
 // A UGV that is not located is mapped like any obstacle: a silent robot is in the way.
 #include <bitset>
 #include <cstdint>
@@ -37,6 +41,7 @@ struct TeamFilterConfig {
 struct TeamFilterCounters {
   std::uint64_t dropped = 0;    // returns dropped
   std::uint64_t located = 0;    // times a UGV became located
+  std::uint64_t own_body = 0;   // times a located UGV's own body was found in the map
   std::uint64_t forgotten = 0;  // voxels forgotten then
 };
 
@@ -61,6 +66,7 @@ class TeamFilter {
   struct Capsule {  // the points within `radius` of the segment [a, b]
     Vec2 a, b;
     double radius;
+    double inner;  // within this of `a` only its body can be
     bool anew;
     Vec2 lo, hi;  // its bounding box: most returns are far from every UGV, and cheaply so
     bool contains(const Vec2& p) const;
