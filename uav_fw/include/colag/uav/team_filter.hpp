@@ -40,8 +40,8 @@ struct TeamFilterConfig {
 
 struct TeamFilterCounters {
   std::uint64_t dropped = 0;    // returns dropped
-  std::uint64_t located = 0;    // times a UGV became located
-  std::uint64_t own_body = 0;   // times a located UGV's own body was found in the map
+  std::uint64_t located = 0;    // times a UGV's disc was forgotten: newly located, or own_body
+  std::uint64_t own_body = 0;   // of those, a located UGV's own body found in the map
   std::uint64_t forgotten = 0;  // voxels forgotten then
 };
 
