@@ -83,3 +83,31 @@ TEST(UavOdometryHistory, InterpolatesAndRefusesDistantStamps) {
   EXPECT_FALSE(h.pose_at(TimePoint{1130ms}, 100ms, p));  // 110 ms: too far
   EXPECT_FALSE(h.pose_at(TimePoint{800ms}, 100ms, p));
 }
+
+// The UAV publishes its odometry at 20 Hz and a detection can be newer than the newest sample a
+// UGV has: that sample moved on by its velocity, not the sample itself (at 3 m/s, 50 ms is
+// 15 cm of error in every relative pose placed that way).
+TEST(UavOdometryHistory, CarriesTheNewestSampleOnByItsVelocity) {
+  UavOdometryHistory h;
+  msg::UavOdometry m = odom(TimePoint{1000ms}, Vec3(1, 2, 1.5), 0.5);
+  m.velocity_mps[0] = 3.0;
+  m.velocity_mps[1] = -1.0;
+  m.yaw_rate_radps = 0.4;
+  ASSERT_TRUE(h.push(m));
+  Pose3 p;
+  ASSERT_TRUE(h.pose_at(TimePoint{1050ms}, 100ms, p));
+  EXPECT_NEAR(p.p.x(), 1.15, 1e-12);
+  EXPECT_NEAR(p.p.y(), 1.95, 1e-12);
+  EXPECT_NEAR(p.p.z(), 1.5, 1e-12);
+  EXPECT_NEAR(yaw_of(p.q), 0.52, 1e-9);
+  EXPECT_FALSE(h.pose_at(TimePoint{1101ms}, 100ms, p));  // beyond the tolerance all the same
+  ASSERT_TRUE(h.pose_at(TimePoint{950ms}, 100ms, p));    // before the oldest: the oldest
+  EXPECT_NEAR(p.p.x(), 1.0, 1e-12);
+  // A velocity that is not finite moves nothing (the pose still places detections).
+  msg::UavOdometry bad = odom(TimePoint{1100ms}, Vec3(2, 2, 1.5), 0.0);
+  bad.velocity_mps[0] = std::numeric_limits<double>::quiet_NaN();
+  ASSERT_TRUE(h.push(bad));
+  ASSERT_TRUE(h.pose_at(TimePoint{1150ms}, 100ms, p));
+  EXPECT_NEAR(p.p.x(), 2.0, 1e-12);
+  EXPECT_TRUE(p.p.allFinite());
+}

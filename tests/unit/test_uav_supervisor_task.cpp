@@ -433,6 +433,25 @@ TEST(UavSupervisorTask, FliesAsHighAsItsCameraWantsAndItsLidarAllows) {
   EXPECT_EQ(altitude(-25.2, 0), configured);    // a LiDAR not described: as configured
 }
 
+// Every UGV receives each UAV's odometry: 20 Hz (odometry_period), the newest sample each time,
+// from a 50 Hz source and control loop.
+TEST(UavSupervisorTask, SendsItsOdometryAtTwentyHertz) {
+  Rig rig;
+  Collect<msg::UavOdometry> odometry;
+  ASSERT_TRUE(rig.bus->subscribe(msg::topic_of<msg::UavOdometry>, kAnyRobot, odometry));
+  rig.ex.run_until(TimePoint{1s});
+  const std::size_t before = odometry.got.size();
+  rig.ex.run_until(TimePoint{3s});
+  const std::size_t sent = odometry.got.size() - before;
+  EXPECT_GE(sent, 38u);
+  EXPECT_LE(sent, 41u);
+  for (std::size_t i = before + 1; i < odometry.got.size(); ++i) {
+    const Duration gap = odometry.got[i].stamp - odometry.got[i - 1].stamp;
+    EXPECT_GE(gap, 40ms);
+    EXPECT_LE(gap, 60ms);
+  }
+}
+
 TEST(UavSupervisorTask, AFlightControllerThatLeavesTheMissionIsNoLongerCommandedAndSaysWhy) {
   Rig rig;
   Collect<msg::UavOdometry> odometry;

@@ -107,6 +107,8 @@ void UavSupervisorTask::control_step(TimePoint now) {
     ++health_.flight_lost;
   flight_status_ = flight;
   hal::UavState s;
+  bool fresh = false;
+  msg::UavOdometry od;
   while (odometry_.poll(s)) {
     if (!all_finite(s.pose.p) || !s.pose.q.coeffs().allFinite() || !all_finite(s.velocity_mps) ||
         !StampGate::passed(odometry_stamps_.check(s.stamp, now))) {
@@ -115,7 +117,7 @@ void UavSupervisorTask::control_step(TimePoint now) {
     }
     state_ = s;
     have_state_ = true;
-    msg::UavOdometry od;
+    fresh = true;
     od.stamp = s.stamp;
     od.uav_id = config_.id;
     for (int i = 0; i < 3; ++i) {
@@ -130,6 +132,13 @@ void UavSupervisorTask::control_step(TimePoint now) {
     od.yaw_rate_radps = s.yaw_rate_radps;
     od.flight = flight.state;  // every UGV stops while the flight controller is not ours
     od.fault = flight.fault;
+  }
+  // The newest sample, at odometry_period on average (the control ticks need not divide it).
+  if (fresh && (odometry_due_ == kNever || now >= odometry_due_)) {
+    const Duration period = config_.odometry_period;
+    odometry_due_ = odometry_due_ == kNever || now - odometry_due_ >= period
+                        ? now + period
+                        : odometry_due_ + period;
     (void)transport_.publish(od);
     last_odometry_ = od;
     odometry_sent_ = now;

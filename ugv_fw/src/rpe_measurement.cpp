@@ -34,7 +34,14 @@ Status UavOdometryHistory::push(const msg::UavOdometry& m) {
   if (!entries_.empty() && m.stamp <= entries_.back().t) {
     return {Errc::kOutOfRange, "UAV odometry: stamp not increasing"};
   }
-  entries_.push_overwrite({m.stamp, {Vec3(m.position_m[0], m.position_m[1], m.position_m[2]), q}});
+  // A velocity that is not finite is taken as none: the pose alone still places detections
+  // between samples.
+  const bool moving = finite(m.velocity_mps) && std::isfinite(m.yaw_rate_radps);
+  entries_.push_overwrite(
+      {m.stamp,
+       {Vec3(m.position_m[0], m.position_m[1], m.position_m[2]), q},
+       moving ? Vec3(m.velocity_mps[0], m.velocity_mps[1], m.velocity_mps[2]) : Vec3::Zero(),
+       moving ? m.yaw_rate_radps : 0.0});
   return Status::ok();
 }
 
@@ -57,6 +64,12 @@ bool UavOdometryHistory::pose_at(TimePoint t, Duration tolerance, Pose3& out) co
   const Duration gap = nearest.t > t ? nearest.t - t : t - nearest.t;
   if (gap > tolerance) return false;
   out = nearest.pose;
+  if (i == entries_.size()) {  // after the newest: where its velocity took it
+    const double dt = to_seconds(t - nearest.t);
+    out.p += dt * nearest.velocity;
+    out.q = (Quat(Eigen::AngleAxisd(dt * nearest.yaw_rate, Vec3::UnitZ())) * nearest.pose.q)
+                .normalized();
+  }
   return true;
 }
 

@@ -1,8 +1,10 @@
 #pragma once
 // From the UAV's messages to an EKF measurement (paper Eq. (6)-(7)): the UGV's world pose is
 // the UAV's odometry at the detection time composed with the relative pose; the RPE
-// covariance is rotated into the world frame. The UAV odometry is kept for ~1 s and
-// interpolated at the detection stamp; pairs more than `tolerance` apart are refused.
+// covariance is rotated into the world frame. The UAV odometry (20 Hz) is kept for ~3 s and
+// interpolated at the detection stamp, or carried on by its velocity past the newest sample (a
+// detection newer than the odometry that has arrived); pairs more than `tolerance` apart are
+// refused.
 #include "colag/common/limits.hpp"
 #include "colag/common/ring_buffer.hpp"
 #include "colag/common/status.hpp"
@@ -17,8 +19,9 @@ class UavOdometryHistory {
   // Stores a sample; refuses non-finite values, non-unit orientations and stamps that do not
   // increase.
   Status push(const msg::UavOdometry& m);
-  // The UAV pose at t: interpolated between the samples around t, or the nearest sample if it
-  // is within `tolerance` (t outside the kept history).
+  // The UAV pose at t: interpolated between the samples around t; within `tolerance` after the
+  // newest, that sample moved on by its velocity and yaw rate; within it before the oldest, the
+  // oldest.
   bool pose_at(TimePoint t, Duration tolerance, Pose3& out) const;
   TimePoint newest() const { return entries_.empty() ? kNever : entries_.back().t; }
   void clear() { entries_.clear(); }  // the UAV's clock went back: its old samples do not fit
@@ -27,6 +30,8 @@ class UavOdometryHistory {
   struct Entry {
     TimePoint t;
     Pose3 pose;
+    Vec3 velocity = Vec3::Zero();
+    double yaw_rate = 0.0;
   };
   RingBuffer<Entry, limits::kUavOdometryHistory> entries_;
 };
