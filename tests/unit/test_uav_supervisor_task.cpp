@@ -600,6 +600,42 @@ TEST(UavSupervisorTask, ASilentUavsUgvsAreTakenOverAfterThePeerTimeout) {
   EXPECT_EQ(f.held(0), (std::vector<RobotId>{0, 1}));
 }
 
+// With two UAVs each UGV's nearby list comes from the UAV nearest to it (not from both: that
+// doubled the lists every UGV receives), and from the other once that one falls silent.
+TEST(UavSupervisorTask, EachUgvsNearbyListComesFromTheNearestUav) {
+  TwoUavs f;
+  f.ugvs = {Vec2(-13, -5), Vec2(-11, 5), Vec2(13, -5), Vec2(11, 5)};
+  f.heartbeat(30.0);
+  f.ex.run_until(f.ex.now() + 1s);
+  const auto sent = [&] {
+    return std::array<std::uint64_t, 2>{f.uav[0]->health().nearby_sent,
+                                        f.uav[1]->health().nearby_sent};
+  };
+  Collect<msg::NearbyUgvs> lists;
+  ASSERT_TRUE(f.bus->subscribe(msg::topic_of<msg::NearbyUgvs>, kAnyRobot, lists));
+  const auto before = sent();
+  for (int i = 0; i < 2; ++i) {
+    f.heartbeat(29.0 - i);
+    f.ex.run_until(f.ex.now() + 1s);
+  }
+  const auto after = sent();
+  // 10 Hz for each of its two UGVs, 2 s (a step either way at the edges).
+  EXPECT_NEAR(static_cast<double>(after[0] - before[0]), 40.0, 2.0);
+  EXPECT_NEAR(static_cast<double>(after[1] - before[1]), 40.0, 2.0);
+  for (const msg::NearbyUgvs& m : lists.got)
+    EXPECT_EQ(m.uav_id, m.ugv_id < 2 ? 0 : 1) << "UGV " << m.ugv_id;
+  // UAV 1 silent: after peer_timeout UAV 0 relays to all four.
+  f.sky[1]->odometry_on = false;
+  for (int i = 0; i < 4; ++i) {
+    f.heartbeat(27.0 - i);
+    f.ex.run_until(f.ex.now() + 1s);
+  }
+  const auto later = sent();
+  f.heartbeat(23.0);
+  f.ex.run_until(f.ex.now() + 1s);
+  EXPECT_NEAR(static_cast<double>(sent()[0] - later[0]), 40.0, 2.0);  // 4 UGVs, 1 s
+}
+
 // Scheduling with a peer (its odometry and plans read, the split solved) allocates nothing.
 TEST(UavSupervisorTask, TwoUavsStepsAllocateNothingInSteadyState) {
   TwoUavs f;

@@ -620,7 +620,21 @@ void UavSupervisorTask::relay_nearby(TimePoint now) {
   nearby_.uav_id = config_.id;
   health_.nearby_sent += static_cast<std::uint64_t>(uav::relay_nearby(
       ugvs_, now, config_.status_timeout, config_.nearby, nearby_,
+      [&](RobotId id) { return relays_to(now, id); },
       [&](const msg::NearbyUgvs& m) { return static_cast<bool>(transport_.publish(m)); }));
+}
+
+bool UavSupervisorTask::relays_to(TimePoint now, RobotId id) const {
+  if (!have_state_) return true;  // nowhere yet: relay rather than leave a UGV without
+  const auto& s = ugvs_[id].status;
+  const Vec2 ugv(s.position_m[0], s.position_m[1]);
+  const double mine = (state_.pose.p.head<2>() - ugv).norm();
+  for (const Peer& peer : peers_) {
+    if (!peer.known || now - peer.heard > config_.peer_timeout) continue;
+    const double age = std::min(to_seconds(now - peer.heard), 0.5);
+    if ((peer.p + age * peer.v - ugv).norm() + config_.relay_overlap_m < mine) return false;
+  }
+  return true;
 }
 
 void UavSupervisorTask::scheduling_step(TimePoint now) {

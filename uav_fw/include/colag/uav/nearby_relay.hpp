@@ -60,20 +60,31 @@ void fill_nearby(RobotId to, const Ugvs& ugvs, TimePoint now, const NearbyRelayC
   }
 }
 
-// Every UGV heard within `timeout` gets its list (fill_nearby), stamped `now`, through
-// `publish(out)` (true when sent); returns how many were sent. One pass of the relay.
-template <class Ugvs, class Publish>
+// Every UGV heard within `timeout` for which `mine(id)` holds gets its list (fill_nearby),
+// stamped `now`, through `publish(out)` (true when sent); returns how many were sent. One pass of
+// the relay.
+template <class Ugvs, class Mine, class Publish>
 int relay_nearby(const Ugvs& ugvs, TimePoint now, Duration timeout, const NearbyRelayConfig& config,
-                 msg::NearbyUgvs& out, Publish&& publish) {
+                 msg::NearbyUgvs& out, Mine&& mine, Publish&& publish) {
   int sent = 0;
   for (std::size_t to = 0; to < ugvs.size(); ++to) {
     if (!ugvs[to].known || now - ugvs[to].heard > timeout) continue;
+    if (!mine(static_cast<RobotId>(to))) continue;
     fill_nearby(static_cast<RobotId>(to), ugvs, now, config, out);
     out.stamp = now;
     ++out.seq;
     sent += publish(out) ? 1 : 0;
   }
   return sent;
+}
+
+// ... to every UGV heard.
+template <class Ugvs, class Publish>
+int relay_nearby(const Ugvs& ugvs, TimePoint now, Duration timeout, const NearbyRelayConfig& config,
+                 msg::NearbyUgvs& out, Publish&& publish) {
+  return relay_nearby(
+      ugvs, now, timeout, config, out, [](RobotId) { return true; },
+      std::forward<Publish>(publish));
 }
 
 }  // namespace colag::uav

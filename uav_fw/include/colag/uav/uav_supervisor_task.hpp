@@ -109,6 +109,9 @@ struct UavSupervisorConfig {
   // extrapolated by the velocity past the newest) and to the other UAVs (by the velocity too):
   // 20 Hz serves both. Every 50 Hz sample was 5.5 kB/s of a UGV's 10 kB/s, per UAV.
   Duration odometry_period = std::chrono::milliseconds(50);
+  // With several UAVs each UGV's nearby list comes from the nearest (see relays_to): every UAV
+  // relaying every list made a UGV's 1.3 kB/s of lists K times that.
+  double relay_overlap_m = 1.0;
   Duration flight_layer_period = std::chrono::seconds(1);
   Duration plan_publish_period = std::chrono::seconds(1);
   Duration max_future_skew = std::chrono::milliseconds(200);
@@ -222,6 +225,10 @@ class UavSupervisorTask {
   void filter_team(TimePoint now);
   void publish_plan(TimePoint now, bool changed);
   void relay_nearby(TimePoint now);
+  // Whether this UAV relays UGV `id`'s nearby list: the nearest live UAV to it does, and any
+  // within relay_overlap_m of the nearest (their views of each other lag a little: at a switch
+  // two relay for a moment rather than none).
+  bool relays_to(TimePoint now, RobotId id) const;
 
   UavSupervisorConfig config_;
   platform::Transport& transport_;
