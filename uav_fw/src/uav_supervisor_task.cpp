@@ -183,12 +183,10 @@ Neighbours UavSupervisorTask::neighbours(TimePoint now) const {
   for (const Peer& peer : peers_) {
     // On the ground too: one taking off beside us is in the air a moment later.
     if (!peer.known) continue;
-    const bool heard = now - peer.heard <= config_.peer_timeout;
-    if (heard) {  // where it is now, by its velocity
+    if (heard_lately(peer, now)) {
       const bool flies_mission =
           peer.flight == msg::UavFlight::kInControl || peer.flight == msg::UavFlight::kStarting;
-      const double age = std::min(to_seconds(now - peer.heard), 0.5);
-      (void)out.push_back({peer.p + age * peer.v, peer.v, flies_mission});
+      (void)out.push_back({where_now(peer, now), peer.v, flies_mission});
       continue;
     }
     // Silent (its board dead, its link lost): it flew on for up to peer_failsafe, until its flight
@@ -381,8 +379,7 @@ void UavSupervisorTask::read_peers(TimePoint now) {
     }
   }
   for (Peer& peer : peers_) {
-    const bool live = peer.known && now - peer.heard <= config_.peer_timeout &&
-                      peer.flight == msg::UavFlight::kInControl;
+    const bool live = heard_lately(peer, now) && peer.flight == msg::UavFlight::kInControl;
     if (peer.live && !live) {
       ++health_.peers_lost;
       peer.claims.clear();  // what it held is free
@@ -630,9 +627,8 @@ bool UavSupervisorTask::relays_to(TimePoint now, RobotId id) const {
   const Vec2 ugv(s.position_m[0], s.position_m[1]);
   const double mine = (state_.pose.p.head<2>() - ugv).norm();
   for (const Peer& peer : peers_) {
-    if (!peer.known || now - peer.heard > config_.peer_timeout) continue;
-    const double age = std::min(to_seconds(now - peer.heard), 0.5);
-    if ((peer.p + age * peer.v - ugv).norm() + config_.relay_overlap_m < mine) return false;
+    if (!heard_lately(peer, now)) continue;
+    if ((where_now(peer, now) - ugv).norm() + config_.relay_overlap_m < mine) return false;
   }
   return true;
 }

@@ -280,6 +280,14 @@ class UavSupervisorTask {
   };
   void read_peer_odometry(TimePoint now);
   Neighbours neighbours(TimePoint now) const;  // the peers to keep clear of
+  // A peer heard within peer_timeout, and where it is now by its velocity (its last sample
+  // carried on for half a second at most).
+  bool heard_lately(const Peer& peer, TimePoint now) const {
+    return peer.known && now - peer.heard <= config_.peer_timeout;
+  }
+  static Vec2 where_now(const Peer& peer, TimePoint now) {
+    return peer.p + std::min(to_seconds(now - peer.heard), 0.5) * peer.v;
+  }
   platform::QueueReader<msg::UavOdometry, 8 * limits::kMaxUavs> peer_odometry_in_;
   platform::QueueReader<msg::SupportPlan, 2 * limits::kMaxUavs> peer_plans_in_;
   std::array<Peer, limits::kMaxUavs> peers_{};
