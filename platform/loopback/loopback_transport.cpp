@@ -87,6 +87,7 @@ Status LoopbackTransport::publish_from(std::uint8_t participant, msg::Topic topi
     reached |= bit;
     ++traffic_[sub.participant].samples_in;
     traffic_[sub.participant].bytes_in += bytes;
+    traffic_[sub.participant].bytes_in_by_topic[index(topic)] += bytes;
   }
 
   if (free_slots_.empty()) {

@@ -59,6 +59,10 @@ void print_table(const mission::MissionOutcome& o) {
     std::printf("  UAVs closest        %8.2f m (3-D, airborne)\n", o.uav_min_separation_m);
   std::printf("  network in per UGV  %8.1f kB/s (CDR; the UAV sends %.1f kB/s in all)\n",
               o.bytes_in_per_ugv_per_s / 1e3, o.uav_bytes_out_per_s / 1e3);
+  for (std::size_t k = 0; k < msg::kTopicCount; ++k) {
+    const double b = o.bytes_in_per_ugv_by_topic_per_s[k];
+    if (b >= 50.0) std::printf("    %-28s %6.1f kB/s\n", msg::kTopicTable[k].name, b / 1e3);
+  }
   std::printf("  collisions          %8d\n", o.collisions);
   std::printf("  all reached         %8s\n", o.all_reached ? "yes" : "NO");
   for (const auto& u : o.ugvs) {

@@ -86,9 +86,9 @@ TEST(Mission, DenseFiveUgvsAllReachWithoutCollision) {
 TEST(Mission, ThirtyTwoUgvsAllReachAndEachReceivesAboutWhatOneOfThreeDoes) {
   // The largest fleet, in the paper's 40 m arena (a second row of lanes behind the first): every
   // UGV reaches without a collision, and what each one receives does not grow with the fleet
-  // (only with how many others are near it, at most kMaxNearbyUgvs): were every UAV sample
-  // delivered to every UGV, each would take in the UAV's whole output, ten times the 3-UGV
-  // figure.
+  // (only with how many others are near it, at most kMaxNearbyUgvs, and the farther ones at
+  // half the rate): were every UAV sample delivered to every UGV, each would take in the UAV's
+  // whole output, ten times the 3-UGV figure. Issue 23's bound: 1.2x (1.09x measured).
   MissionConfig cfg;
   cfg.scenario = "sparse";
   cfg.seed = 2;
@@ -100,8 +100,8 @@ TEST(Mission, ThirtyTwoUgvsAllReachAndEachReceivesAboutWhatOneOfThreeDoes) {
   const MissionOutcome all = run(cfg);
   expect_all_reached_safely(all);
   ASSERT_EQ(all.ugvs.size(), limits::kMaxUgvs);
-  EXPECT_LT(all.bytes_in_per_ugv_per_s, 1.5 * three.bytes_in_per_ugv_per_s);
-  EXPECT_GT(all.uav_bytes_out_per_s, 5.0 * three.uav_bytes_out_per_s);  // the UAV's does grow
+  EXPECT_LT(all.bytes_in_per_ugv_per_s, 1.2 * three.bytes_in_per_ugv_per_s);  // issue 23
+  EXPECT_GT(all.uav_bytes_out_per_s, 5.0 * three.uav_bytes_out_per_s);        // the UAV's does grow
 }
 
 TEST(Mission, ALongSiteIsCrossedWithMapsThatMoveWithTheRobots) {

@@ -275,6 +275,11 @@ TEST_F(LoopbackTest, EachParticipantReceivesItsOwnAndTheFleetsTopicsAndTheBytesA
   EXPECT_EQ(bus->traffic(0).bytes_in, patch0 + odometry);
   EXPECT_EQ(bus->traffic(0).samples_in, 2u);
   EXPECT_EQ(bus->traffic(1).bytes_in, patch1 + odometry);
+  // and by topic
+  const auto& by_topic = bus->traffic(1).bytes_in_by_topic;
+  EXPECT_EQ(by_topic[static_cast<std::size_t>(msg::topic_of<msg::MapPatch>)], patch1);
+  EXPECT_EQ(by_topic[static_cast<std::size_t>(msg::topic_of<msg::UavOdometry>)], odometry);
+  EXPECT_EQ(by_topic[static_cast<std::size_t>(msg::topic_of<msg::UgvStatus>)], 0u);
   EXPECT_EQ(bus->traffic(kUav).bytes_in, st);
   EXPECT_EQ(bus->traffic(kUav).bytes_out, patch0 + patch1 + odometry);
   EXPECT_EQ(bus->traffic(0).bytes_out, st);

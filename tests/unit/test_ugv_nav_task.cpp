@@ -634,6 +634,50 @@ TEST(UgvNavTask, AUgvLeftOutOfTheUavsNewerListIsForgotten) {
   EXPECT_EQ(rig.ugv->mode(), msg::UgvMode::kArrived);
 }
 
+// Every other list is a near one (6 m, uav/nearby_relay.hpp): a UGV missing from it is
+// forgotten only where the list would have held it; one farther is kept until a full list
+// leaves it out, or for a second without any list holding it.
+TEST(UgvNavTask, ANearListForgetsOnlyTheUgvsWithinItsRadius) {
+  Rig rig(Vec2(8.0, 0.0));
+  rig.publish_map(-3.2, -3.2, 9.6, 12.8);
+  const auto relay = [&](double radius_m, std::initializer_list<std::pair<RobotId, Vec2>> ugvs) {
+    msg::NearbyUgvs m;
+    m.stamp = rig.ex.now();
+    m.ugv_id = 0;
+    m.radius_m = radius_m;
+    for (const auto& [id, at] : ugvs) {
+      msg::NearbyUgv& s = m.ugvs[m.ugvs.count++];
+      s.stamp = rig.ex.now();
+      s.ugv_id = id;
+      s.mode = msg::UgvMode::kDriving;
+      s.position_m[0] = static_cast<float>(at.x());
+      s.position_m[1] = static_cast<float>(at.y());
+      s.covariance_xy[0] = s.covariance_xy[2] = 1e-4F;
+    }
+    ASSERT_TRUE(rig.bus->publish(m));
+    rig.ex.run_until(rig.ex.now() + 100ms);
+  };
+  const Vec2 far(0.0, 9.0), near(0.0, 3.0);
+  relay(12.0, {{2, near}, {1, far}});
+  EXPECT_TRUE(rig.ugv->knows_ugv(1));
+  EXPECT_TRUE(rig.ugv->knows_ugv(2));
+  relay(6.0, {{2, near}});
+  EXPECT_TRUE(rig.ugv->knows_ugv(1)) << "a near list says nothing of a UGV 9 m away";
+  relay(6.0, {});
+  EXPECT_FALSE(rig.ugv->knows_ugv(2)) << "3 m away and not in a 6 m list: gone";
+  EXPECT_TRUE(rig.ugv->knows_ugv(1));
+  relay(12.0, {});
+  EXPECT_FALSE(rig.ugv->knows_ugv(1)) << "not in a full list";
+
+  relay(12.0, {{1, far}});
+  for (int i = 0; i < 8; ++i)
+    relay(6.0, {});
+  EXPECT_TRUE(rig.ugv->knows_ugv(1));
+  for (int i = 0; i < 3; ++i)
+    relay(6.0, {});
+  EXPECT_FALSE(rig.ugv->knows_ugv(1)) << "no list held it for over a second";
+}
+
 TEST(UgvNavTask, StepsAllocateNothingInSteadyState) {
   Rig rig(Vec2(0.0, 15.0), Vec3(0, 5, 2));
   rig.publish_map(-6.4, -3.2, 6.4, 19.2);

@@ -616,7 +616,7 @@ void UavSupervisorTask::publish_plan(TimePoint now, bool changed) {
 void UavSupervisorTask::relay_nearby(TimePoint now) {
   nearby_.uav_id = config_.id;
   health_.nearby_sent += static_cast<std::uint64_t>(uav::relay_nearby(
-      ugvs_, now, config_.status_timeout, config_.nearby, nearby_,
+      ugvs_, now, config_.status_timeout, config_.nearby, nearby_passes_++, nearby_,
       [&](RobotId id) { return relays_to(now, id); },
       [&](const msg::NearbyUgvs& m) { return static_cast<bool>(transport_.publish(m)); }));
 }

@@ -395,12 +395,15 @@ void UgvNavTask::read_map_patches(TimePoint now) {
   }
 }
 
-// The UAV's list of the UGVs near us replaces what we knew: one not in it is farther than the
-// list's radius. Without lists (the UAV silent) the last ones age: see collect_others.
+// The UAV's list of the UGVs near us replaces what we knew within its radius: one not in it is
+// farther. What we knew of those farther stays for a while (the lists between full ones have a
+// smaller radius: see nearby_relay.hpp). Without lists (the UAV silent) the last ones age: see
+// collect_others.
 void UgvNavTask::read_other_ugvs(TimePoint now) {
   msg::NearbyUgvs m;
   while (nearby_in_.pop(m)) {
-    if (m.ugv_id != config_.id || m.ugvs.size() > m.ugvs.capacity()) {
+    if (m.ugv_id != config_.id || m.ugvs.size() > m.ugvs.capacity() ||
+        !(m.radius_m >= 0.0 && m.radius_m <= 1e6)) {
       ++health_.statuses_rejected;
       continue;
     }
@@ -410,8 +413,7 @@ void UgvNavTask::read_other_ugvs(TimePoint now) {
       ++health_.statuses_rejected;
       continue;
     }
-    for (OtherUgv& o : others_)
-      o.known = false;
+    std::array<bool, limits::kMaxUgvs> in_list{};
     for (const msg::NearbyUgv& u : m.ugvs) {
       if (!plausible(u)) {
         ++health_.statuses_rejected;
@@ -420,10 +422,21 @@ void UgvNavTask::read_other_ugvs(TimePoint now) {
       if (u.ugv_id == config_.id) continue;  // ourselves: never planned around
       OtherUgv& o = others_[u.ugv_id];
       o.known = true;
+      o.listed = now;
+      in_list[u.ugv_id] = true;
       o.heard = now - std::chrono::duration_cast<Duration>(
                           std::chrono::duration<double>(std::min(double{u.silent_s}, 1e6)));
       o.state = u;
       o.state.stamp = fleet_.to_local(u.stamp);
+    }
+    const Vec2 me = ekf_.pose().p;
+    for (std::size_t id = 0; id < others_.size(); ++id) {
+      OtherUgv& o = others_[id];
+      if (!o.known || in_list[id]) continue;
+      const double d = (Vec2(o.state.position_m[0], o.state.position_m[1]) - me).norm();
+      if (!(d > m.radius_m - config_.nearby_margin_m) ||
+          elapsed(now, o.listed, config_.nearby_keep))
+        o.known = false;
     }
   }
 }

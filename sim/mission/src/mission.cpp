@@ -87,7 +87,7 @@ class ReferenceFrameTask final : public platform::Task {
     relayed_ = now;
     const uav::UavSupervisorConfig relay;  // the UAV's relay settings
     (void)uav::relay_nearby(
-        ugvs_, now, relay.status_timeout, relay.nearby, nearby_,
+        ugvs_, now, relay.status_timeout, relay.nearby, passes_++, nearby_,
         [&](const msg::NearbyUgvs& m) { return static_cast<bool>(transport_.publish(m)); });
   }
 
@@ -102,6 +102,7 @@ class ReferenceFrameTask final : public platform::Task {
   platform::QueueReader<msg::UgvStatus, 4 * limits::kMaxUgvs> statuses_in_;
   std::array<Ugv, limits::kMaxUgvs> ugvs_{};
   msg::NearbyUgvs nearby_;
+  std::uint64_t passes_ = 0;
   TimePoint relayed_ = kNever;
 };
 
@@ -712,8 +713,12 @@ MissionOutcome Mission::collect(MissionTrace* trace) const {
     UgvOutcome& o = out.ugvs[i];
     o.id = static_cast<int>(i);
     o.support_requests = p.support->requests[i];
-    if (out.sim_time_s > 0.0)
-      o.bytes_in_per_s = static_cast<double>(p.bus->traffic(i).bytes_in) / out.sim_time_s;
+    if (out.sim_time_s > 0.0) {
+      const platform::ParticipantTraffic& t = p.bus->traffic(i);
+      o.bytes_in_per_s = static_cast<double>(t.bytes_in) / out.sim_time_s;
+      for (std::size_t k = 0; k < msg::kTopicCount; ++k)
+        o.bytes_in_by_topic_per_s[k] = static_cast<double>(t.bytes_in_by_topic[k]) / out.sim_time_s;
+    }
     if (!o.reached) o.reach_time_s = -1.0;
   }
   summarise(*p.world, out);

@@ -68,6 +68,15 @@ std::string end_of(const UgvOutcome& o) {
   return end;
 }
 
+// Bytes per second by DDS topic name (the topics that carried any).
+nlohmann::ordered_json by_topic(const std::array<double, msg::kTopicCount>& bytes_per_s) {
+  nlohmann::ordered_json j = nlohmann::ordered_json::object();
+  for (std::size_t k = 0; k < msg::kTopicCount; ++k) {
+    if (bytes_per_s[k] > 0.0) j[msg::kTopicTable[k].name] = bytes_per_s[k];
+  }
+  return j;
+}
+
 }  // namespace
 
 std::string standing_reason(msg::UgvMode mode, msg::BlockedReason blocked) {
@@ -99,6 +108,8 @@ void summarise(const sim::SimWorld& world, MissionOutcome& out) {
     out.max_waiting_time_s = std::max(out.max_waiting_time_s, o.stopped_s);
     out.nees_mean += o.nees_mean / n;
     out.bytes_in_per_ugv_per_s += o.bytes_in_per_s / n;
+    for (std::size_t k = 0; k < msg::kTopicCount; ++k)
+      out.bytes_in_per_ugv_by_topic_per_s[k] += o.bytes_in_by_topic_per_s[k] / n;
     out.ugv_traj_length_m += o.traj_length_m / n;
     o.end = end_of(o);
   }
@@ -179,6 +190,7 @@ std::string to_json(const MissionOutcome& o, bool include_wall_time) {
     }
     ju["support_requests"] = u.support_requests;
     ju["bytes_in_per_s"] = u.bytes_in_per_s;
+    ju["bytes_in_by_topic"] = by_topic(u.bytes_in_by_topic_per_s);
     ju["goal_distance_m"] = u.goal_distance_m;
     ju["end"] = u.end;
     ugvs.push_back(ju);
@@ -195,6 +207,7 @@ std::string to_json(const MissionOutcome& o, bool include_wall_time) {
   if (o.config.uavs > 1) s["uav_min_separation_m"] = o.uav_min_separation_m;
   s["nees_mean"] = o.nees_mean;
   s["bytes_in_per_ugv_per_s"] = o.bytes_in_per_ugv_per_s;
+  s["bytes_in_per_ugv_by_topic"] = by_topic(o.bytes_in_per_ugv_by_topic_per_s);
   s["collisions"] = o.collisions;
   s["all_reached"] = o.all_reached;
   j["summary"] = s;

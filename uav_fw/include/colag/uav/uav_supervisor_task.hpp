@@ -308,7 +308,8 @@ class UavSupervisorTask {
   msg::SupportPlan plan_;
   TimePoint plan_published_ = kNever;
   std::uint32_t patch_seq_ = 0;
-  msg::NearbyUgvs nearby_;  // the list being sent (a member: ~1 kB off the stack)
+  msg::NearbyUgvs nearby_;           // the list being sent (a member: ~1 kB off the stack)
+  std::uint64_t nearby_passes_ = 0;  // of the relay (see nearby_radius)
   UavHealth health_;
 };
 

@@ -78,7 +78,13 @@ struct UgvNavConfig {
   // or the disc would cover the whole map.
   double other_ugv_max_speed_mps = 0.7;
   double other_ugv_range_m = 6.0;  // other UGVs farther than this are not planned around
-  bool use_rpe_updates = true;     // false: the ablation "RPE only initialises the EKF"
+  // The UAV's lists of the UGVs near us are complete within their radius, which alternates
+  // (uav/nearby_relay.hpp): a UGV missing from a list is forgotten when it was last seen
+  // within the radius less this margin (where the UAV would have listed it), and kept for
+  // `nearby_keep` when it was farther (a list of a smaller radius says nothing of it).
+  double nearby_margin_m = 1.0;
+  Duration nearby_keep = std::chrono::seconds(1);
+  bool use_rpe_updates = true;  // false: the ablation "RPE only initialises the EKF"
 };
 
 }  // namespace colag::ugv

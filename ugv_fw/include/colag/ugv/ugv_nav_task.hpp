@@ -157,12 +157,15 @@ class UgvNavTask {
   bool paused() const { return paused_; }
   bool aborted() const { return aborted_; }
   const msg::UgvStatus& last_status() const { return last_status_; }  // as last published
+  // Whether it knows of UGV `id` from the UAV's lists (and plans around it when near).
+  bool knows_ugv(RobotId id) const { return id < others_.size() && others_[id].known; }
 
  private:
   using Loop = platform::MemberLoop<UgvNavTask>;
   struct OtherUgv {
     bool known = false;
     TimePoint heard{};     // when its status was last heard (by the UAV, which relays it)
+    TimePoint listed{};    // when a list last carried it (our clock)
     msg::NearbyUgv state;  // its stamp converted to our clock
   };
 

@@ -34,6 +34,7 @@ struct LinkFaults {
 struct ParticipantTraffic {
   std::uint64_t samples_in = 0;
   std::uint64_t bytes_in = 0;  // CDR bytes (msg::wire_bytes), before injected loss
+  std::array<std::uint64_t, msg::kTopicCount> bytes_in_by_topic{};  // bytes_in, by msg::Topic
   std::uint64_t samples_out = 0;
   std::uint64_t bytes_out = 0;
 };

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "colag/common/ugv_motion_model.hpp"
+#include "colag/msg/topics.hpp"
 #include "colag/msg/ugv_status.hpp"
 #include "colag/sim/mission/mission_config.hpp"
 #include "colag/ugv/waiting.hpp"
@@ -52,7 +53,8 @@ struct UgvOutcome {
   // What the network carried to it (CDR bytes of every sample it receives, msg::wire_bytes;
   // RTPS/UDP headers not included), per second of the mission.
   double bytes_in_per_s = 0.0;
-  msg::UgvMode final_mode = msg::UgvMode::kWaitingForInit;  // what it reported last
+  std::array<double, msg::kTopicCount> bytes_in_by_topic_per_s{};  // the same, by msg::Topic
+  msg::UgvMode final_mode = msg::UgvMode::kWaitingForInit;         // what it reported last
   double blocked_s = 0.0;  // time it reported kBlocked (it gave up asking for support)
   // Why, the last time it was blocked (with final_mode kBlocked: why it is now).
   msg::BlockedReason blocked_reason = msg::BlockedReason::kNone;
@@ -94,6 +96,7 @@ struct MissionOutcome {
   double max_waiting_time_s = 0.0;
   double nees_mean = 0.0;               // the mean over the UGVs of their nees_mean
   double bytes_in_per_ugv_per_s = 0.0;  // the mean over the UGVs of their bytes_in_per_s
+  std::array<double, msg::kTopicCount> bytes_in_per_ugv_by_topic_per_s{};  // the same, by topic
   double uav_bytes_in_per_s = 0.0;
   double uav_bytes_out_per_s = 0.0;
   double ugv_traj_length_m = 0.0;
