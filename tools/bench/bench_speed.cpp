@@ -36,11 +36,12 @@ int run_speed(const SpeedOptions& o) {
   MissionRun proto;
   proto.spec.scenario = o.scenario;
   proto.spec.ugvs = o.ugvs;
+  proto.spec.world = o.world;
   proto.seed = o.seed;
   std::vector<MissionRun> runs(static_cast<std::size_t>(o.runs), proto);
   std::vector<MissionRun> base(ab ? runs.size() : 0, proto);
-  std::printf("real-time factor: %s, %d UGVs, seed %d, %d runs one after the other%s\n",
-              o.scenario.c_str(), o.ugvs, o.seed, o.runs,
+  std::printf("real-time factor: %s, %d UGVs, seed %d, %s world, %d runs one after the other%s\n",
+              o.scenario.c_str(), o.ugvs, o.seed, o.world.c_str(), o.runs,
               ab ? ", each after a run of the baseline" : "");
   const std::string sim = sim_path(o.sim);
   if (!ab) {

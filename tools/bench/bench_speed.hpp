@@ -11,7 +11,8 @@ struct SpeedOptions {
   std::string scenario = "dense";
   int ugvs = 7;
   int seed = 1;
-  double target = 50.0;  // real-time factor the median should reach
+  std::string world = "ideal";  // colag_sim --world: ideal, field or a YAML file
+  double target = 50.0;         // real-time factor the median should reach
   double max_time_s = 400.0;
   std::string sim;  // path of colag_sim (default: next to colag_bench)
   // Another colag_sim (e.g. built from the previous commit): each run of ours follows one of

@@ -5,7 +5,8 @@
 //   colag_bench tables [--seeds K] [--jobs J] [--table 1|2|3|all] [--csv FILE] [--quick]
 //   colag_bench safety [--seeds K] [--jobs J] [--csv FILE] [--quick]
 //                                           the paper's Table I and II, measured
-//   colag_bench speed [--runs N] [--scenario S] [--ugvs N] [--seed S] [--baseline COLAG_SIM]
+//   colag_bench speed [--runs N] [--scenario S] [--ugvs N] [--seed S] [--world W]
+//                     [--baseline COLAG_SIM]
 //                                           the real-time factor of one mission, N times
 #include <CLI/CLI.hpp>
 
@@ -99,6 +100,7 @@ int run(int argc, char** argv) {
   speed->add_option("--ugvs", popt.ugvs, "UGVs")
       ->check(CLI::Range(1, static_cast<int>(limits::kMaxUgvs)));
   speed->add_option("--seed", popt.seed, "seed")->check(CLI::Range(0, 2147483647));
+  speed->add_option("--world", popt.world, "ideal, field, or a YAML scenario file");
   speed->add_option("--target", popt.target, "real-time factor the median should reach")
       ->check(sim::positive_up_to(1e6));
   speed->add_option("--sim", popt.sim, "colag_sim to run (default: next to colag_bench)");
