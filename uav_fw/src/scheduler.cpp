@@ -127,7 +127,11 @@ const ScheduleResult& Scheduler::solve(const ScheduleProblem& problem,
   }
   const bool small = n <= std::min(config_.exact_max_stops, kExactMaxStops);
   bool searched = false;
-  if (!small || !solve_exact(working_, true, nullptr, result_)) {
+  // The exact solver first looks for the shortest order that meets every deadline, unless a
+  // stop is late even on the quickest path to it: then none does (a UGV already stopped for
+  // support has its deadline now, so this is most solves in a crowd: 2233 of 2238 with 16 UGVs,
+  // and that first pass was 40 % of the scheduler's time).
+  if (!small || !lower_bound(working_).feasible || !solve_exact(working_, true, nullptr, result_)) {
     // No order meets every deadline (or too many stops for the exact solver): the heuristic
     // gives an incumbent; the exact solver, pruning against it, either beats it or proves it.
     solve_heuristic(working_, !small, warm, result_);
