@@ -36,8 +36,9 @@ COLAG_MESSAGE_FIELDS(NearbyUgv, stamp, ugv_id, mode, position_m, yaw_rad, covari
 // first (at most kMaxNearbyUgvs). The list is complete within the radius: a UGV not in it is
 // farther. The radius alternates (12 m, then 6 m: see uav/nearby_relay.hpp), and a list cut at
 // kMaxNearbyUgvs carries the distance of the first UGV left out; a UGV beyond a list's radius
-// is neither confirmed nor denied by it. The UGVs do not read each other's statuses (they would grow every UGV's traffic with
-// the fleet); the UAV hears them all and relays to each UGV the few it must plan around.
+// is neither confirmed nor denied by it. The UGVs do not read each other's statuses (they would
+// grow every UGV's traffic with the fleet); the UAV hears them all and relays to each UGV the few
+// it must plan around.
 struct NearbyUgvs {
   TimePoint stamp;
   RobotId uav_id = 0;
