@@ -1,5 +1,7 @@
 #include "colag/sim/world/sim_world.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -12,26 +14,12 @@ class SimWorld::ScanDevice final : public hal::Lidar {
  public:
   ScanDevice(const LidarPattern& pattern, ForkJoin* fork_join, const LidarErrors& errors,
              std::uint64_t seed)
-      : sim_(pattern, fork_join), errors_(errors), rng_(seed) {
-    if (errors_.any()) noisy_.reserve(limits::kMaxLidarPoints);
+      : sim_(pattern, fork_join), fork_join_(fork_join), errors_(errors), seed_(seed) {
+    if (errors_.any()) noisy_.resize(limits::kMaxLidarPoints);
   }
   void scan(const BoxWorld& world, const Pose3& pose, TimePoint now) {
     sim_.scan(world, pose, points_, misses_);
-    if (errors_.any()) {
-      // Each return off along its ray; some lost (a real driver does not report them).
-      noisy_.clear();
-      for (const hal::LidarPoint& q : points_) {
-        if (errors_.dropout > 0.0 && rng_.bernoulli(errors_.dropout)) continue;
-        const double r =
-            std::sqrt(double{q.x_m} * q.x_m + double{q.y_m} * q.y_m + double{q.z_m} * q.z_m);
-        const double noise =
-            errors_.range_sigma_m > 0.0 ? rng_.gaussian(0.0, errors_.range_sigma_m) : 0.0;
-        const auto k = static_cast<float>(r > 0.0 ? std::max(r + noise, 0.0) / r : 1.0);
-        noisy_.push_back({q.x_m * k, q.y_m * k, q.z_m * k});
-      }
-      points_ = noisy_;
-      if (errors_.returns_only) misses_ = {};
-    }
+    if (errors_.any()) add_errors();
     stamp_ = now;
     fresh_ = true;
   }
@@ -43,9 +31,53 @@ class SimWorld::ScanDevice final : public hal::Lidar {
   }
 
  private:
+  // Each return off along its ray; some lost (a real driver does not report them). Two random
+  // draws a return, ~14 000 returns a scan: in fixed chunks, each drawing from its own stream
+  // (seeded by the device, the scan and the chunk), so that they run on every core and the
+  // scan is the same whatever the number of cores.
+  void add_errors() {
+    constexpr int kChunks = 8;
+    const std::size_t n = std::min(points_.size(), noisy_.size());
+    std::array<std::size_t, kChunks> kept{};
+    ++scans_;
+    const auto chunk = [&](int c) {
+      const std::size_t from = n * static_cast<std::size_t>(c) / kChunks;
+      const std::size_t to = n * static_cast<std::size_t>(c + 1) / kChunks;
+      Rng rng(seed_ * 0x9E3779B97F4A7C15ULL + scans_ * kChunks + static_cast<std::uint64_t>(c));
+      std::size_t out = from;
+      for (std::size_t k = from; k < to; ++k) {
+        const hal::LidarPoint& q = points_[k];
+        if (errors_.dropout > 0.0 && rng.bernoulli(errors_.dropout)) continue;
+        const double r =
+            std::sqrt(double{q.x_m} * q.x_m + double{q.y_m} * q.y_m + double{q.z_m} * q.z_m);
+        const double noise =
+            errors_.range_sigma_m > 0.0 ? rng.gaussian(0.0, errors_.range_sigma_m) : 0.0;
+        const auto f = static_cast<float>(r > 0.0 ? std::max(r + noise, 0.0) / r : 1.0);
+        noisy_[out++] = {q.x_m * f, q.y_m * f, q.z_m * f};
+      }
+      kept[static_cast<std::size_t>(c)] = out - from;
+    };
+    if (fork_join_ != nullptr) {
+      fork_join_->run(kChunks, chunk);
+    } else {
+      for (int c = 0; c < kChunks; ++c)
+        chunk(c);
+    }
+    std::size_t total = 0;  // the chunks' returns, closed up in scan order
+    for (int c = 0; c < kChunks; ++c) {
+      const auto from = static_cast<std::ptrdiff_t>(n * static_cast<std::size_t>(c) / kChunks);
+      const std::size_t m = kept[static_cast<std::size_t>(c)];
+      std::copy_n(noisy_.begin() + from, m, noisy_.begin() + static_cast<std::ptrdiff_t>(total));
+      total += m;
+    }
+    points_ = std::span<const hal::LidarPoint>(noisy_.data(), total);
+    if (errors_.returns_only) misses_ = {};
+  }
+
   LidarSimulator sim_;
+  ForkJoin* fork_join_;
   LidarErrors errors_;
-  Rng rng_;
+  std::uint64_t seed_, scans_ = 0;
   std::vector<hal::LidarPoint> noisy_;
   std::span<const hal::LidarPoint> points_, misses_;
   TimePoint stamp_{};
