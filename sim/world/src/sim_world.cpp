@@ -67,7 +67,9 @@ class SimWorld::ScanDevice final : public hal::Lidar {
     for (int c = 0; c < kChunks; ++c) {
       const auto from = static_cast<std::ptrdiff_t>(n * static_cast<std::size_t>(c) / kChunks);
       const std::size_t m = kept[static_cast<std::size_t>(c)];
-      std::copy_n(noisy_.begin() + from, m, noisy_.begin() + static_cast<std::ptrdiff_t>(total));
+      // Moved down (or not at all: std::copy may not copy a range onto itself).
+      if (static_cast<std::ptrdiff_t>(total) != from)
+        std::copy_n(noisy_.begin() + from, m, noisy_.begin() + static_cast<std::ptrdiff_t>(total));
       total += m;
     }
     points_ = std::span<const hal::LidarPoint>(noisy_.data(), total);
