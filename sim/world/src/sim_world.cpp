@@ -38,11 +38,14 @@ class SimWorld::ScanDevice final : public hal::Lidar {
   void add_errors() {
     constexpr int kChunks = 8;
     const std::size_t n = std::min(points_.size(), noisy_.size());
+    std::array<std::size_t, kChunks + 1> first{};  // chunk c: returns [first[c], first[c + 1])
+    for (std::size_t c = 0; c <= kChunks; ++c)
+      first[c] = n * c / kChunks;
     std::array<std::size_t, kChunks> kept{};
     ++scans_;
     const auto chunk = [&](int c) {
-      const std::size_t from = n * static_cast<std::size_t>(c) / kChunks;
-      const std::size_t to = n * static_cast<std::size_t>(c + 1) / kChunks;
+      const std::size_t from = first[static_cast<std::size_t>(c)];
+      const std::size_t to = first[static_cast<std::size_t>(c) + 1];
       Rng rng(seed_ * 0x9E3779B97F4A7C15ULL + scans_ * kChunks + static_cast<std::uint64_t>(c));
       std::size_t out = from;
       for (std::size_t k = from; k < to; ++k) {
@@ -64,13 +67,13 @@ class SimWorld::ScanDevice final : public hal::Lidar {
         chunk(c);
     }
     std::size_t total = 0;  // the chunks' returns, closed up in scan order
-    for (int c = 0; c < kChunks; ++c) {
-      const auto from = static_cast<std::ptrdiff_t>(n * static_cast<std::size_t>(c) / kChunks);
-      const std::size_t m = kept[static_cast<std::size_t>(c)];
+    for (std::size_t c = 0; c < kChunks; ++c) {
       // Moved down (or not at all: std::copy may not copy a range onto itself).
-      if (static_cast<std::ptrdiff_t>(total) != from)
-        std::copy_n(noisy_.begin() + from, m, noisy_.begin() + static_cast<std::ptrdiff_t>(total));
-      total += m;
+      if (total != first[c]) {
+        std::copy_n(noisy_.begin() + static_cast<std::ptrdiff_t>(first[c]), kept[c],
+                    noisy_.begin() + static_cast<std::ptrdiff_t>(total));
+      }
+      total += kept[c];
     }
     points_ = std::span<const hal::LidarPoint>(noisy_.data(), total);
     if (errors_.returns_only) misses_ = {};
