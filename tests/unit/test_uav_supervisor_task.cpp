@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "allocation_counter.hpp"
@@ -133,7 +135,9 @@ struct Rig {
     s.scout_in_s = scout_in_s;
     ASSERT_TRUE(bus->publish(s));
   }
-  void request(RobotId id, Vec2 support, double t_pc, bool cancel = false) {
+  // `collision`: its collision point (default: 2 m ahead of where the tests place the UGV).
+  void request(RobotId id, Vec2 support, double t_pc, bool cancel = false,
+               const std::optional<Vec2>& collision = std::nullopt) {
     msg::CollisionInfo ci;
     ci.stamp = ex.now();
     ci.ugv_id = id;
@@ -141,8 +145,10 @@ struct Rig {
     ci.cancel = cancel;
     ci.support_point_m[0] = support.x();
     ci.support_point_m[1] = support.y();
-    ci.collision_point_m[0] = support.x();
-    ci.collision_point_m[1] = support.y() - 2.0;
+    // The tests place each UGV 2 m south of its support point: its collision 2 m ahead of it.
+    const Vec2 c = collision.value_or(support - Vec2(0.0, 4.0));
+    ci.collision_point_m[0] = c.x();
+    ci.collision_point_m[1] = c.y();
     ci.time_to_collision_s = t_pc;
     ASSERT_TRUE(bus->publish(ci));
   }
@@ -431,6 +437,57 @@ TEST(UavSupervisorTask, FliesAsHighAsItsCameraWantsAndItsLidarAllows) {
   EXPECT_NEAR(altitude(-25.2, 32), 0.1 + 3.2 * std::tan(25.2 * M_PI / 180.0), 1e-9);
   EXPECT_NEAR(altitude(-40.0, 32), 2.3, 1e-9);  // a steeper one: where the camera sees most
   EXPECT_EQ(altitude(-25.2, 0), configured);    // a LiDAR not described: as configured
+}
+
+// A UGV stopped by the ground right at its front edge (the start of a mission): the usual
+// orbit, 2 m round a point 2 m behind it, keeps that ground in the LiDAR's blind disc or behind
+// the UGV's body. The UAV circles the UGV itself from outside the blind disc, starting in front.
+TEST(UavSupervisorTask, CirclesAUgvAgainstItsOwnEdgeFromOutsideItsBlindDisc) {
+  UavSupervisorConfig c;
+  c.camera_view = {5.0, 75.0, 0.3};
+  c.lidar_pattern = {32, -25.2, 1.2, 1200};
+  Rig rig(nullptr, c);
+  const double h = rig.uav->config().flight.altitude_m;
+  const double blind = (h - c.sharer.band_low_m) / std::tan(25.2 * M_PI / 180.0);
+  const double radius = rig.uav->edge_orbit_radius_m();
+  EXPECT_NEAR(radius, blind + c.edge_beyond_blind_m, 1e-9);
+  const Vec2 ugv(6.0, 2.0);  // facing south (the rig's statuses)
+  rig.sky->ugvs = {ugv};
+  const Vec2 front = ugv + Vec2(0.0, -radius);
+  const auto ask = [&] {
+    rig.status(0, ugv, msg::UgvMode::kWaitingForSupport);
+    rig.request(0, ugv + Vec2(0.0, 1.7), 0.2, false, ugv + Vec2(0.0, -0.3));
+  };
+  for (int i = 0; i < 12 && rig.distance_to(front) > 1.0; ++i) {
+    ask();
+    rig.ex.run_until(rig.ex.now() + 1s);
+  }
+  ASSERT_LT(rig.distance_to(front), 1.0);  // in front of it first
+  double nearest = 1e9, farthest = 0.0, turned = 0.0;
+  double last = std::atan2(rig.sky->p.y() - ugv.y(), rig.sky->p.x() - ugv.x());
+  for (int i = 0; i < 80; ++i) {
+    if (i % 10 == 0) ask();
+    rig.ex.run_until(rig.ex.now() + 100ms);
+    nearest = std::min(nearest, rig.distance_to(ugv));
+    farthest = std::max(farthest, rig.distance_to(ugv));
+    const double bearing = std::atan2(rig.sky->p.y() - ugv.y(), rig.sky->p.x() - ugv.x());
+    turned += std::remainder(bearing - last, 2.0 * M_PI);
+    last = bearing;
+  }
+  EXPECT_EQ(rig.uav->mode(), UavMode::kHover);
+  EXPECT_GT(nearest, blind);                // never over the ground it must see
+  EXPECT_LT(farthest, radius + 0.8);        // within the camera's reach of the tag
+  EXPECT_GT(std::abs(turned), M_PI / 2.0);  // round it: each side seen from that side
+  // A UGV driving towards an obstacle 2 m ahead gets the usual orbit round its support point.
+  rig.request(0, ugv, 0.0, /*cancel=*/true);
+  const Vec2 other(-6.0, 2.0);
+  rig.sky->ugvs = {ugv, other};
+  for (int i = 0; i < 12 && rig.distance_to(other + Vec2(0, 2)) > 1.0; ++i) {
+    rig.status(1, other);
+    rig.request(1, other + Vec2(0, 2), 3.0);
+    rig.ex.run_until(rig.ex.now() + 1s);
+  }
+  EXPECT_LT(rig.distance_to(other + Vec2(0, 2)), 1.0);
 }
 
 // Every UGV receives each UAV's odometry: 20 Hz (odometry_period), the newest sample each time,

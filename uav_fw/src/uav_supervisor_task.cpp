@@ -36,6 +36,13 @@ MapperConfig mapper_config(const UavSupervisorConfig& c) {
   return m;
 }
 
+// See UavSupervisorConfig::edge_stop_m (c: with its camera altitude).
+double edge_orbit_radius_of(const UavSupervisorConfig& c) {
+  return edge_orbit_radius(blind_cone_elevation_deg(c.lidar_pattern, c.lidar_mount.q),
+                           c.flight.altitude_m, c.sharer.band_low_m, c.camera_view,
+                           c.edge_beyond_blind_m, c.orbit_radius_m);
+}
+
 UavSupervisorConfig with_camera_altitude(UavSupervisorConfig c) {
   const double lowest_beam = blind_cone_elevation_deg(c.lidar_pattern, c.lidar_mount.q);
   const double highest =
@@ -73,7 +80,8 @@ UavSupervisorTask::UavSupervisorTask(const UavSupervisorConfig& config,
       flight_layer_(flight_layer_config(config_)),
       flight_(config_.flight),
       scheduler_(config.scheduler, &exact_labels_),
-      fleet_(config.fleet, &exact_labels_) {
+      fleet_(config.fleet, &exact_labels_),
+      edge_orbit_radius_(edge_orbit_radius_of(config_)) {
   const Duration skew = config.max_future_skew;
   odometry_stamps_ = StampGate({skew, config.max_input_age, true});
   camera_stamps_ = StampGate({skew, config.max_input_age, false});
@@ -307,14 +315,32 @@ void UavSupervisorTask::read_requests(TimePoint now) {
     }
     if (!r.active) r.since = now;
     r.active = true;
-    r.support = Vec2(ci.support_point_m[0], ci.support_point_m[1]);
+    r.asked = Vec2(ci.support_point_m[0], ci.support_point_m[1]);
+    r.collision = Vec2(ci.collision_point_m[0], ci.collision_point_m[1]);
     r.deadline = ci.stamp + seconds(ci.time_to_collision_s);
-    if (r.served && (r.support - r.served_at).norm() > config_.served_moved_m) r.served = false;
+    if (r.served && (r.asked - r.served_at).norm() > config_.served_moved_m) r.served = false;
   }
   for (Request& r : requests_) {
     if (r.served && now >= r.served_until) r.served = false;  // its turn again
     if (r.active && now - r.heard > config_.request_timeout)
       r.active = false;  // heartbeats stopped
+  }
+}
+
+// Where the UAV flies for each request and what it circles there: the UGV's support point, or
+// for a UGV against its own edge the UGV itself, from in front of it (see edge_orbit.hpp).
+void UavSupervisorTask::place_stops() {
+  for (RobotId id = 0; id < limits::kMaxUgvs; ++id) {
+    Request& r = requests_[id];
+    r.support = r.centre = r.asked;
+    r.radius = config_.orbit_radius_m;
+    const Ugv& u = ugvs_[id];
+    if (!r.active || !u.known || std::isnan(edge_orbit_radius_)) continue;
+    const Vec2 p(u.status.position_m[0], u.status.position_m[1]);
+    if (!((r.collision - p).norm() <= config_.edge_stop_m)) continue;  // NaN: not at its edge
+    r.centre = p;
+    r.radius = edge_orbit_radius_;
+    r.support = p + r.radius * Vec2(std::cos(u.status.yaw_rad), std::sin(u.status.yaw_rad));
   }
 }
 
@@ -636,6 +662,7 @@ bool UavSupervisorTask::relays_to(TimePoint now, RobotId id) const {
 void UavSupervisorTask::scheduling_step(TimePoint now) {
   read_requests(now);
   read_statuses(now);
+  place_stops();
   read_peers(now);
   relay_nearby(now);
   StampCounters stamps = odometry_stamps_.counters();
@@ -674,17 +701,23 @@ void UavSupervisorTask::scheduling_step(TimePoint now) {
   const bool circled = target_is_request_ || target_is_scout_;
   if (!circled || (target - stop_point_).norm() > config_.served_moved_m) at_stop_ = false;
   stop_point_ = target;
+  Vec2 centre = target;
+  double radius = config_.orbit_radius_m;
+  if (target_is_request_) {
+    const Request& r = requests_[static_cast<std::size_t>(target_ugv_)];
+    centre += r.centre - r.support;  // the same offset from where separation put the target
+    radius = r.radius;
+  }
   if (circled && !at_stop_ && (target - here).norm() <= config_.arrival_radius_m) {
     at_stop_ = true;
     hover_since_ = now;
-    orbit_phase_ = std::atan2(here.y() - target.y(), here.x() - target.x());
+    orbit_phase_ = std::atan2(here.y() - centre.y(), here.x() - centre.x());
   }
   if (at_stop_) {
     mode_ = target_is_scout_ ? UavMode::kScout : UavMode::kHover;
-    orbit_phase_ += config_.orbit_speed_mps / config_.orbit_radius_m *
-                    to_seconds(config_.schedule.scheduling.period);
-    const Vec2 orbit =
-        target + config_.orbit_radius_m * Vec2(std::cos(orbit_phase_), std::sin(orbit_phase_));
+    orbit_phase_ +=
+        config_.orbit_speed_mps / radius * to_seconds(config_.schedule.scheduling.period);
+    const Vec2 orbit = centre + radius * Vec2(std::cos(orbit_phase_), std::sin(orbit_phase_));
     flight_.set_target(orbit, now, here, flight_layer_, others);
     if (target_is_scout_ && elapsed(now, hover_since_, config_.scout_timeout)) {
       // Its point stays where it was: a cell we do not see from here. Scout for the others.
@@ -696,7 +729,7 @@ void UavSupervisorTask::scheduling_step(TimePoint now) {
       Request& r = requests_[static_cast<std::size_t>(target_ugv_)];
       r.served = true;
       r.since = now + config_.served_cooldown;  // we came: its age counts from its next turn
-      r.served_at = r.support;
+      r.served_at = r.asked;
       r.served_until = now + config_.served_cooldown;
       ++health_.hover_timeouts;
       at_stop_ = false;

@@ -23,6 +23,7 @@
 #include "colag/platform/readers.hpp"
 #include "colag/uav/camera_altitude.hpp"
 #include "colag/uav/clock_server.hpp"
+#include "colag/uav/edge_orbit.hpp"
 #include "colag/uav/fleet_scheduler.hpp"
 #include "colag/uav/flight_planner.hpp"
 #include "colag/uav/map_sharer.hpp"
@@ -79,6 +80,11 @@ struct UavSupervisorConfig {
   // exactly where it is meant to look. Circling, every cell near the point is seen from a side.
   double orbit_radius_m = 2.0;
   double orbit_speed_mps = 1.5;
+  // A UGV whose collision point lies this close to it stands against its own edge (see
+  // edge_orbit.hpp): the UAV circles the UGV itself instead, this far outside the LiDAR's blind
+  // disc (within the camera's reach), starting in front of it.
+  double edge_stop_m = 0.6;
+  double edge_beyond_blind_m = 0.6;
   double lead_m = 3.0;  // idle: fly this far ahead of the UGV, towards its goal
   // Scouting (beyond the paper): with nothing requested, circle the point where a UGV's planned
   // path first comes near unknown cells soonest (UgvStatus::scout_point_m), so that it is mapped
@@ -184,6 +190,9 @@ class UavSupervisorTask {
   const hal::FlightStatus& flight_status() const { return flight_status_; }
   const ClockServer& clock_server() const { return clock_server_; }
   const UavSupervisorConfig& config() const { return config_; }
+  // How far from a UGV against its own edge the UAV circles it (edge_orbit.hpp); NaN: it does
+  // not, no circle sees both its ground and its tag.
+  double edge_orbit_radius_m() const { return edge_orbit_radius_; }
 
  private:
   using Loop = platform::MemberLoop<UavSupervisorTask>;
@@ -195,8 +204,13 @@ class UavSupervisorTask {
     std::uint32_t seq = 0;
     TimePoint heard{};
     TimePoint deadline{};
-    Vec2 support = Vec2::Zero();
+    Vec2 asked = Vec2::Zero();      // the UGV's support point
+    Vec2 collision = Vec2::Zero();  // and its collision point
     Vec2 served_at = Vec2::Zero();
+    // Where the UAV flies for it, and the circle it flies there (place_stops).
+    Vec2 support = Vec2::Zero();
+    Vec2 centre = Vec2::Zero();
+    double radius = 0.0;
   };
   struct Ugv {
     bool known = false;
@@ -213,6 +227,7 @@ class UavSupervisorTask {
   void scheduling_step(TimePoint now);
 
   void read_requests(TimePoint now);
+  void place_stops();
   void read_statuses(TimePoint now);
   void read_peers(TimePoint now);
   void solve(TimePoint now);
@@ -303,6 +318,7 @@ class UavSupervisorTask {
   bool at_stop_ = false;  // reached the current support or scouting point: circling it
   Vec2 stop_point_ = Vec2::Zero();
   double orbit_phase_ = 0.0;
+  double edge_orbit_radius_ = 0.0;  // see UavSupervisorConfig::edge_stop_m
   TimePoint hover_since_ = kNever;
   UavMode mode_ = UavMode::kIdle;
   msg::SupportPlan plan_;
