@@ -15,8 +15,11 @@ bool finite(const Mat3& m) {
 void UgvEkf::advance(Step& cur, const Step& prev) const {
   cur.x = prev.x;
   cur.P = prev.P;
-  propagate(cur.x, cur.P, cur.v, cur.w, to_seconds(cur.t - prev.t), config_.noise,
-            config_.calibration.walk());
+  const double dt = to_seconds(cur.t - prev.t);
+  propagate(cur.x, cur.P, cur.v, cur.w, dt, config_.noise, config_.calibration.walk());
+  const double walk = config_.frame_walk_m_per_sqrt_s * config_.frame_walk_m_per_sqrt_s * dt;
+  cur.P(0, 0) += walk;
+  cur.P(1, 1) += walk;
 }
 
 void UgvEkf::clamp_calibration(UgvStateVec& x) const {

@@ -25,6 +25,7 @@ UgvEkfConfig white_noise_config() {
   c.noise.sigma_omega_fraction = 0.0;
   c.calibration.estimate = false;
   c.adapt_measurement_noise = false;
+  c.frame_walk_m_per_sqrt_s = 0.0;  // located in a frame fixed to the ground
   return c;
 }
 
@@ -269,6 +270,36 @@ TEST(UgvEkf, CovarianceGrowthMatchesTheClosedFormOnAStraightLine) {
   EXPECT_NEAR(P(1, 1), v * v * dt * dt * q * (n - 1.0) * n * (2.0 * n - 1) / 6.0, 1e-9);
   EXPECT_NEAR(P(0, 1), 0.0, 1e-12);
   EXPECT_NEAR(ekf.mean().x(), v * n * dt, 1e-9);
+}
+
+// Standing, the wheels count nothing and are exact: the heading stays as known, and the position
+// grows only by the frame's wander, the same in every direction (the UAV's odometry frame it is
+// located in moves under it). Driving adds the wheels' noise on top.
+TEST(UgvEkf, StandingStillOnlyTheFrameWandersAndTheHeadingStaysKnown) {
+  UgvEkfConfig config;
+  config.calibration.estimate = false;
+  config.frame_walk_m_per_sqrt_s = 0.005;
+  UgvEkf ekf(config);
+  const Mat3 start = Vec3(1e-4, 1e-4, 1e-4).asDiagonal();
+  ASSERT_EQ(ekf.update({TimePoint{}, {Vec2(0, 0), 0.7}, start}), UgvEkf::Update::kInitialized);
+  const int n = 3000;  // 60 s
+  for (int k = 1; k <= n; ++k)
+    ASSERT_TRUE(ekf.predict(TimePoint{k * kOdomPeriod}, 0.0, 0.0));
+  const Mat3 P = ekf.covariance();
+  const double walk = 0.005 * 0.005 * 60.0;
+  EXPECT_NEAR(P(0, 0), 1e-4 + walk, 1e-12);
+  EXPECT_NEAR(P(1, 1), 1e-4 + walk, 1e-12);
+  EXPECT_NEAR(P(0, 1), 0.0, 1e-15);
+  EXPECT_NEAR(P(2, 2), 1e-4, 1e-15);
+  EXPECT_NEAR(ekf.mean().z(), 0.7, 1e-15);
+  // One second of driving: the wheels' noise along the heading, beyond the frame's.
+  for (int k = n + 1; k <= n + 50; ++k)
+    ASSERT_TRUE(ekf.predict(TimePoint{k * kOdomPeriod}, 0.3, 0.0));
+  const Vec2 along(std::cos(0.7), std::sin(0.7));
+  const double grown = along.dot(ekf.covariance().topLeftCorner<2, 2>() * along) -
+                       along.dot(P.topLeftCorner<2, 2>() * along);
+  EXPECT_GT(grown, 0.005 * 0.005 * 1.0 + 0.5 * 0.0336 * 0.0336 * 50 * 0.02 * 0.02);
+  EXPECT_GT(ekf.covariance()(2, 2), 1e-4 + 0.5 * 0.0292 * 0.0292 * 50 * 0.02 * 0.02);
 }
 
 // A robot that starts with its heading known to 0.3 rad only and drives 4 m blind ends up

@@ -121,11 +121,12 @@ void read_ugv_sections(board::Reader& r, const YAML::Node& doc, UgvBoardConfig& 
   sched.transport = sched.transport.at_period(sched.control.period);  // polled every control tick
 
   const YAML::Node odo = child(doc, "odometry");
-  r.only(odo, "odometry", {"timeout_ms", "sigma_v", "sigma_omega", "calibration"});
+  r.only(odo, "odometry", {"timeout_ms", "sigma_v", "sigma_omega", "frame_walk", "calibration"});
   r.millis(odo, "odometry", "timeout_ms", c.nav.odometry_timeout, 10.0, 1000.0);
   // Zero would stop the estimate's uncertainty from growing: never true of wheels.
   r.get(odo, "odometry", "sigma_v", c.nav.ekf.noise.sigma_v_mps, 1e-4, 1.0);
   r.get(odo, "odometry", "sigma_omega", c.nav.ekf.noise.sigma_omega_radps, 1e-4, 1.0);
+  r.get(odo, "odometry", "frame_walk", c.nav.ekf.frame_walk_m_per_sqrt_s, 0.0, 1.0);
   // What the wheel calibration may be off by (1 sigma): the estimator learns the rest.
   const YAML::Node cal = child(odo, "calibration");
   const std::string cp = "odometry.calibration";

@@ -35,6 +35,12 @@ struct PoseMeasurement {
 struct UgvEkfConfig {
   OdometryNoise noise;
   OdometryCalibrationModel calibration;
+  // The robot is located in the UAV's odometry frame, and that frame wanders against the ground
+  // (a LiDAR-inertial odometry's slow drift and rare re-registration jumps, a few cm a minute):
+  // the position's variance grows by frame_walk^2 per second whatever the wheels do. Without
+  // it a UGV standing for minutes under the UAV grew ever surer (sigma 1.7 cm) while the frame
+  // moved under it (NEES 8.5 over a mission). 0: a frame fixed to the ground.
+  double frame_walk_m_per_sqrt_s = 0.005;
   double gate_chi2 = 16.27;         // chi-square, 3 dof, 99.9 %: one false reject in 1000
   double robust_chi2 = 7.81;        // 95 %: beyond it a measurement is down-weighted (Huber)
   int reset_after_rejections = 25;  // consecutive gate rejections => re-initialise

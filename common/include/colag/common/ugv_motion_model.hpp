@@ -160,9 +160,13 @@ inline void propagate(UgvStateVec& x, UgvStateCov& P, double v_m, double w_m, do
   B(1, 0) = s * (1.0 + x(kScaleV)) * dt;
   B(2, 0) = x(kWPerMetre) * dt;
   B(2, 1) = (1.0 + x(kScaleW) - 2.0 * x(kSlip) * std::abs(w_m)) * dt;
+  // Encoders that count no tick while the wheels stand are exact: no noise then (the wandering
+  // of the frame the robot is located in is the estimator's, UgvEkfConfig::frame_walk).
   const double fv = n.sigma_v_fraction * v_m, fw = n.sigma_omega_fraction * w_m;
-  const Eigen::Vector2d q(n.sigma_v_mps * n.sigma_v_mps + fv * fv,
-                          n.sigma_omega_radps * n.sigma_omega_radps + fw * fw);
+  const Eigen::Vector2d q =
+      moving ? Eigen::Vector2d(n.sigma_v_mps * n.sigma_v_mps + fv * fv,
+                               n.sigma_omega_radps * n.sigma_omega_radps + fw * fw)
+             : Eigen::Vector2d::Zero();
   x(0) += c * v * dt;
   x(1) += s * v * dt;
   x(2) = wrap_angle(x(2) + w * dt);
