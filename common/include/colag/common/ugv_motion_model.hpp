@@ -161,7 +161,8 @@ inline void propagate(UgvStateVec& x, UgvStateCov& P, double v_m, double w_m, do
   B(2, 0) = x(kWPerMetre) * dt;
   B(2, 1) = (1.0 + x(kScaleW) - 2.0 * x(kSlip) * std::abs(w_m)) * dt;
   // Encoders that count no tick while the wheels stand are exact: no noise then (the wandering
-  // of the frame the robot is located in is the estimator's, UgvEkfConfig::frame_walk).
+  // of the frame the robot is located in is the estimator's:
+  // UgvEkfConfig::frame_walk_m_per_sqrt_s).
   const double fv = n.sigma_v_fraction * v_m, fw = n.sigma_omega_fraction * w_m;
   const Eigen::Vector2d q =
       moving ? Eigen::Vector2d(n.sigma_v_mps * n.sigma_v_mps + fv * fv,
