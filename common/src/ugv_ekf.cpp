@@ -17,9 +17,7 @@ void UgvEkf::advance(Step& cur, const Step& prev) const {
   cur.P = prev.P;
   const double dt = to_seconds(cur.t - prev.t);
   propagate(cur.x, cur.P, cur.v, cur.w, dt, config_.noise, config_.calibration.walk());
-  const double walk = config_.frame_walk_m_per_sqrt_s * config_.frame_walk_m_per_sqrt_s * dt;
-  cur.P(0, 0) += walk;
-  cur.P(1, 1) += walk;
+  add_frame_walk(cur.P, config_.frame_walk_m_per_sqrt_s, dt);
 }
 
 void UgvEkf::clamp_calibration(UgvStateVec& x) const {

@@ -44,6 +44,31 @@ TEST(LidarAltitudeLimit, LeavesTheBlindDiscOnTheBodyBandNoWiderThanAsked) {
   EXPECT_EQ(lidar_altitude_limit(-25.2, 0.1, 0.0, 1.0, 3.0), 1.0);
 }
 
+TEST(CameraReach, WhereTheTagLeavesTheConeOrTheRange) {
+  // 75 deg, 5 m, tags 0.3 m up, from 1.6 m: the cone 1.3 tan 75 = 4.85, the range 4.83.
+  EXPECT_NEAR(camera_reach({5.0, 75.0, 0.3}, 1.6), std::sqrt(25.0 - 1.3 * 1.3), 1e-12);
+  // From 0.7 m the cone ends first: 0.4 tan 75.
+  EXPECT_NEAR(camera_reach({5.0, 75.0, 0.3}, 0.7), 0.4 * std::tan(75.0 * M_PI / 180.0), 1e-12);
+  // camera_altitude() flies where it is widest.
+  const CameraView v{5.0, 75.0, 0.3};
+  const double best = camera_reach(v, camera_altitude(v, 0.5, 3.0));
+  EXPECT_GT(best, camera_reach(v, camera_altitude(v, 0.5, 3.0) + 0.1));
+  EXPECT_GT(best, camera_reach(v, camera_altitude(v, 0.5, 3.0) - 0.1));
+  // Beyond its range straight down, nothing; not described or not above the tag: no limit.
+  EXPECT_EQ(camera_reach(v, 5.4), 0.0);
+  EXPECT_TRUE(std::isinf(camera_reach({}, 1.6)));
+  EXPECT_TRUE(std::isinf(camera_reach(v, 0.3)));
+}
+
+TEST(LidarBlindRadius, IsWhatTheAltitudeLimitInverts) {
+  const double h = lidar_altitude_limit(-25.2, 0.1, 3.2, 1.0, 3.0);
+  EXPECT_NEAR(lidar_blind_radius(-25.2, h, 0.1), 3.2, 1e-12);
+  EXPECT_EQ(lidar_blind_radius(-90.0, 1.6, 0.1), 0.0);
+  EXPECT_TRUE(std::isnan(lidar_blind_radius(0.0, 1.6, 0.1)));
+  EXPECT_TRUE(std::isnan(lidar_blind_radius(std::nan(""), 1.6, 0.1)));
+  EXPECT_TRUE(std::isnan(lidar_blind_radius(-25.2, 0.05, 0.1)));  // below the band
+}
+
 TEST(LidarAltitudeLimit, TheBlindConeFollowsHowTheLidarIsMounted) {
   const LidarBeamPattern vlp{32, -25.2, 1.2, 1200};
   const auto about_y = [](double deg) {

@@ -258,3 +258,29 @@ TEST(CollisionPredictor, AnEllipseReachingIntoAWallNowMayNotDriveOnBesideIt) {
                          Mat3(Vec3(0.0025, 0.0025, 0.0).asDiagonal()), away, 0, *map, {}, p);
   EXPECT_EQ(p.kind, CollisionKind::kNone);
 }
+
+// The UAV's odometry frame wanders along the horizon as it does now (the estimator's frame
+// walk): with exact wheels and a known pose, the ellipse k steps ahead has variance walk^2 t.
+TEST(CollisionPredictor, TheFramesWanderGrowsTheEllipsesAhead) {
+  auto map = std::make_unique<MapStore>();
+  ASSERT_TRUE(test::fill_map(*map, -3, -3, 13, 3, [](const Vec2&) { return CellState::kFree; }));
+  PredictorConfig cfg;
+  cfg.horizon_m = 3.0;
+  OdometryCalibrationModel known;
+  known.estimate = false;
+  const double walk = 0.05;
+  for (const double w : {0.0, walk}) {
+    CollisionPredictor predictor(cfg, OdometryNoise{0.0, 0.0, 0.0, 0.0}, known, w);
+    Prediction p;
+    predictor.predict_pose({Vec2(0, 0.05), 0.0}, Mat3::Zero(), straight_trajectory(), 0, *map, {},
+                           p);
+    ASSERT_EQ(p.kind, CollisionKind::kNone);
+    ASSERT_GT(p.ellipses.size(), 10u);
+    // ellipses[0] is now; ellipses[k] is k steps of 0.2 s ahead. M = 3^2 x covariance.
+    for (std::size_t k = 0; k < p.ellipses.size(); ++k) {
+      const double var = w * w * 0.2 * static_cast<double>(k);
+      EXPECT_NEAR(p.ellipses[k].M(0, 0), 9.0 * var, 1e-12) << k;
+      EXPECT_NEAR(p.ellipses[k].M(1, 1), 9.0 * var, 1e-12) << k;
+    }
+  }
+}

@@ -128,6 +128,7 @@ void CollisionPredictor::predict(const UgvStateVec& state, const UgvStateCov& co
       x.head<2>() = s.p;
       x(2) = s.yaw_rad;
       propagate(x, P, s.v_mps, s.omega_radps, config_.dt_s, noise_, walk_);
+      add_frame_walk(P, frame_walk_m_per_sqrt_s_, config_.dt_s);
     }
     if (test(s.p, t, s.yaw_rad)) return;
     if ((s.p - origin).norm() >= config_.horizon_m * horizon_scale_ || i + 1 >= traj.size()) return;

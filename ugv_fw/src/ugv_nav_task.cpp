@@ -50,7 +50,8 @@ UgvNavTask::UgvNavTask(const UgvNavConfig& config, platform::Transport& transpor
       map_(config.map),
       planner_(config.planner),
       controller_(config.controller, config.limits),
-      predictor_(config.predictor, config.ekf.noise, config.ekf.calibration),
+      predictor_(config.predictor, config.ekf.noise, config.ekf.calibration,
+                 config.ekf.frame_walk_m_per_sqrt_s),
       support_(config.support),
       blocked_(config.blocked) {
   // Wheel samples are stamped by this board's clock (their order is the EKF's to check); the

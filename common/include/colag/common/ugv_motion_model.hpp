@@ -139,6 +139,14 @@ inline void add_heading_second_order(UgvStateCov& P, double c, double s, double 
       (2.0 * std::sqrt(std::max(along, 0.0)) * grow + grow * grow) * u * u.transpose();
 }
 
+// The UAV odometry frame the robot is located in wanders against the ground (ugv_ekf.hpp,
+// `frame_walk_m_per_sqrt_s`): the position's variance grows by walk^2 per second, wheels or not.
+inline void add_frame_walk(UgvStateCov& P, double walk_m_per_sqrt_s, double dt) {
+  const double var = walk_m_per_sqrt_s * walk_m_per_sqrt_s * dt;
+  P(0, 0) += var;
+  P(1, 1) += var;
+}
+
 // One step of the model; `walk`: the calibration's random walk.
 inline void propagate(UgvStateVec& x, UgvStateCov& P, double v_m, double w_m, double dt,
                       const OdometryNoise& n, const CalibrationWalk& walk) {

@@ -7,6 +7,7 @@
 // steeper its lowest beam, the smaller the blind disc it leaves under the UAV.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace colag::uav {
 
@@ -23,10 +24,34 @@ inline double camera_altitude(const CameraView& v, double lowest, double highest
   return std::clamp(best, lowest, std::max(lowest, highest));
 }
 
+// How far from the point under it a camera `altitude_m` up sees a tag: where the tag leaves its
+// cone or its detector's range. Infinite where the camera is not described or the tag is not
+// below it.
+inline double camera_reach(const CameraView& v, double altitude_m) {
+  const double above_tag = altitude_m - v.tag_height_m;
+  if (!(v.range_m > 0.0) || !(above_tag > 0.0)) return std::numeric_limits<double>::infinity();
+  double reach = std::sqrt(std::max(0.0, v.range_m * v.range_m - above_tag * above_tag));
+  if (v.half_angle_deg < 90.0)
+    reach = std::min(reach, above_tag * std::tan(v.half_angle_deg * M_PI / 180.0));
+  return reach;
+}
+
+// The blind disc a LiDAR whose lowest beam points `lowest_elevation_deg` (negative: down) leaves
+// on the ground band from `band_low_m` up, flying at `altitude_m`: (h - band_low) / tan(-lowest).
+// 0 looking straight down; NaN where it cannot look down, flies below the band or is not
+// described (NaN).
+inline double lidar_blind_radius(double lowest_elevation_deg, double altitude_m,
+                                 double band_low_m) {
+  const double down = -lowest_elevation_deg * M_PI / 180.0;
+  const double height = altitude_m - band_low_m;
+  if (!(down > 0.0) || !(height > 0.0)) return std::numeric_limits<double>::quiet_NaN();
+  return down >= M_PI / 2.0 ? 0.0 : height / std::tan(down);
+}
+
 // The highest a LiDAR whose lowest beam points `lowest_elevation_deg` (negative: down; see
 // blind_cone_elevation_deg) may fly and still map the ground band from `band_low_m` up out to
-// `blind_radius_m` around the point under it: its blind disc at that height is
-// (h - band_low) / tan(-lowest). A LiDAR that cannot
+// `blind_radius_m` around the point under it (lidar_blind_radius() solved for the altitude). A
+// LiDAR that cannot
 // look down, or one not described (NaN), gives nothing above `lowest`; one looking straight
 // down is limited by `highest` alone.
 inline double lidar_altitude_limit(double lowest_elevation_deg, double band_low_m,

@@ -23,20 +23,13 @@ namespace colag::uav {
 inline double edge_orbit_radius(double lowest_elevation_deg, double altitude_m, double band_low_m,
                                 const CameraView& camera, double beyond_blind_m,
                                 double smallest_m) {
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  const double down = -lowest_elevation_deg * M_PI / 180.0;
-  const double height = altitude_m - band_low_m;
-  if (!(down > 0.0) || !(height > 0.0) || !std::isfinite(beyond_blind_m)) return nan;
-  const double blind = down >= M_PI / 2.0 ? 0.0 : height / std::tan(down);
-  double reach = std::numeric_limits<double>::infinity();
-  const double above_tag = altitude_m - camera.tag_height_m;
-  if (camera.range_m > 0.0 && above_tag > 0.0) {
-    reach = std::sqrt(std::max(0.0, camera.range_m * camera.range_m - above_tag * above_tag));
-    if (camera.half_angle_deg < 90.0)
-      reach = std::min(reach, above_tag * std::tan(camera.half_angle_deg * M_PI / 180.0));
-  }
+  const double blind = lidar_blind_radius(lowest_elevation_deg, altitude_m, band_low_m);
+  if (!std::isfinite(blind) || !std::isfinite(beyond_blind_m))
+    return std::numeric_limits<double>::quiet_NaN();
   const double radius = std::max(smallest_m, blind + beyond_blind_m);
-  return radius <= reach - 0.3 ? radius : nan;
+  return radius <= camera_reach(camera, altitude_m) - 0.3
+             ? radius
+             : std::numeric_limits<double>::quiet_NaN();
 }
 
 }  // namespace colag::uav

@@ -55,9 +55,15 @@ struct Prediction {
 
 class CollisionPredictor {
  public:
+  // `frame_walk_m_per_sqrt_s`: the estimator's (UgvEkfConfig): the frame wanders along the
+  // horizon as it does now.
   CollisionPredictor(const PredictorConfig& config, const OdometryNoise& noise,
-                     const OdometryCalibrationModel& calibration = {})
-      : config_(config), noise_(noise), walk_(calibration.walk()) {}
+                     const OdometryCalibrationModel& calibration = {},
+                     double frame_walk_m_per_sqrt_s = 0.0)
+      : config_(config),
+        noise_(noise),
+        walk_(calibration.walk()),
+        frame_walk_m_per_sqrt_s_(frame_walk_m_per_sqrt_s) {}
 
   // `state`, `covariance`: the EKF now (pose and calibration); the robot is at trajectory
   // sample `progress`.
@@ -88,6 +94,7 @@ class CollisionPredictor {
   PredictorConfig config_;
   OdometryNoise noise_;
   CalibrationWalk walk_;
+  double frame_walk_m_per_sqrt_s_ = 0.0;
   double horizon_scale_ = 1.0;
   // Blocked cells under the current ellipse (ascending indices): touching them is not news.
   StaticVector<std::uint32_t, kMaxExcused> excused_;
