@@ -32,6 +32,7 @@ void UgvEkf::clamp_calibration(UgvStateVec& x) const {
 void UgvEkf::reset() {
   initialized_ = false;
   consecutive_rejections_ = 0;
+  held_.reset();
   noise_mean_ = 1.0;
   noise_samples_ = 0.0;
   history_.clear();
@@ -66,6 +67,19 @@ void UgvEkf::repropagate(std::size_t from) {
   state_ = history_.back();
 }
 
+std::size_t UgvEkf::step_at(TimePoint stamp) const {
+  std::size_t k = history_.size();
+  while (k > 0 && history_[k - 1].t > stamp)
+    --k;
+  return k;
+}
+
+Vec3 UgvEkf::innovation_at(const PoseMeasurement& z, std::size_t k) const {
+  Vec3 e = Vec3(z.pose.p.x(), z.pose.p.y(), z.pose.yaw_rad) - history_[k - 1].x.head<3>();
+  e.z() = wrap_angle(e.z());
+  return e;
+}
+
 UgvEkf::Update UgvEkf::update(const PoseMeasurement& z) {
   const Mat3& reported = z.covariance;
   if (!all_finite(z.pose.p) || !std::isfinite(z.pose.yaw_rad) || !finite(reported) ||
@@ -74,12 +88,9 @@ UgvEkf::Update UgvEkf::update(const PoseMeasurement& z) {
     ++counters_.rejected_invalid;
     return Update::kRejectedInvalid;
   }
-  const Mat3 R = measurement_noise_scale() * reported;
   // The newest step at or before the measurement; a measurement newer than every odometry
   // sample applies to the newest state.
-  std::size_t k = history_.size();
-  while (k > 0 && history_[k - 1].t > z.stamp)
-    --k;
+  std::size_t k = step_at(z.stamp);
   if (k == 0 && !history_.empty()) {
     ++counters_.rejected_stale;
     return Update::kRejectedStale;
@@ -90,6 +101,41 @@ UgvEkf::Update UgvEkf::update(const PoseMeasurement& z) {
     history_.push_overwrite(s);
     k = 1;
   }
+  if (initialized_ && !confirmed(z)) return Update::kHeld;
+  return apply(z, k);
+}
+
+bool UgvEkf::confirmed(const PoseMeasurement& z) {
+  if (!(config_.reacquire_after_s > 0.0) ||
+      to_seconds(z.stamp - last_applied_) <= config_.reacquire_after_s) {
+    return true;
+  }
+  if (held_) {
+    const PoseMeasurement first = *held_;
+    held_.reset();
+    const double apart = std::abs(to_seconds(z.stamp - first.stamp));
+    const std::size_t kf = step_at(first.stamp);
+    if (apart <= config_.reacquire_window_s && kf > 0) {
+      // Both innovations carry the state's error at their stamps, which the odometry between
+      // them (under a second) barely changes: what differs is the two measurements' own errors.
+      Vec3 d = innovation_at(z, step_at(z.stamp)) - innovation_at(first, kf);
+      d.z() = wrap_angle(d.z());
+      const Mat3 S = measurement_noise_scale() * (z.covariance + first.covariance);
+      if (d.dot(S.ldlt().solve(d)) <= config_.gate_chi2) {
+        (void)apply(first, kf);
+        return true;
+      }
+    }
+    ++counters_.unconfirmed;
+  }
+  held_ = z;
+  ++counters_.held;
+  return false;
+}
+
+UgvEkf::Update UgvEkf::apply(const PoseMeasurement& z, std::size_t k) {
+  const Mat3& reported = z.covariance;
+  const Mat3 R = measurement_noise_scale() * reported;
   Step& at = history_[k - 1];
   const Vec3 zv(z.pose.p.x(), z.pose.p.y(), wrap_angle(z.pose.yaw_rad));
 
@@ -103,13 +149,14 @@ UgvEkf::Update UgvEkf::update(const PoseMeasurement& z) {
     at.P.diagonal().tail<kCalibrationDim>() = config_.calibration.prior_variance();
     initialized_ = true;
     consecutive_rejections_ = 0;
+    last_applied_ = z.stamp;
+    held_.reset();
     repropagate(k - 1);
     return result;
   };
   if (!initialized_) return initialise(Update::kInitialized);
 
-  Vec3 innovation = zv - at.x.head<3>();
-  innovation.z() = wrap_angle(innovation.z());
+  const Vec3 innovation = innovation_at(z, k);
   const Mat3 S = at.P.topLeftCorner<3, 3>() + R;
   const double d2 = innovation.dot(S.ldlt().solve(innovation));
   if (!(d2 <= config_.gate_chi2)) {
@@ -146,6 +193,7 @@ UgvEkf::Update UgvEkf::update(const PoseMeasurement& z) {
   at.P = IK * at.P * IK.transpose() + K * Ru * K.transpose();  // Joseph form
   at.P = 0.5 * (at.P + at.P.transpose());
   ++counters_.updates;
+  last_applied_ = std::max(last_applied_, z.stamp);
   repropagate(k - 1);
   return Update::kApplied;
 }

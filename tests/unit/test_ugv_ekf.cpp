@@ -451,3 +451,49 @@ TEST(UgvEkf, InitialisesAtTheMeasurementTimeAndCatchesUpWithOdometry) {
   EXPECT_NEAR(ekf.mean().x(), 3.0 + 0.5 * 0.4, 1e-9);
   EXPECT_EQ(ekf.stamp(), TimePoint{50 * kOdomPeriod});
 }
+
+// After a gap the state cannot tell an outlier from a fix (here it knows its position to 1 m):
+// the first relative pose waits for the next to agree with it. A tag a metre off is dropped;
+// two that agree are both applied; soon after, each is applied on its own again.
+TEST(UgvEkf, AfterAGapARelativePoseWaitsForTheNextToConfirmIt) {
+  for (const double reacquire : {3.0, 0.0}) {
+    UgvEkfConfig cfg = white_noise_config();
+    cfg.reacquire_after_s = reacquire;
+    UgvEkf ekf(cfg);
+    TimePoint t{};
+    ASSERT_TRUE(ekf.predict(t, 0.0, 0.0));
+    const Mat3 unsure = Vec3(1.0, 1.0, 0.3 * 0.3).asDiagonal();
+    ASSERT_EQ(ekf.update({t, {Vec2(0.0, 0.0), 0.0}, unsure}), UgvEkf::Update::kInitialized);
+    const auto stand = [&](Duration d) {
+      for (const TimePoint end = t + d; t < end;) {
+        t += kOdomPeriod;
+        ASSERT_TRUE(ekf.predict(t, 0.0, 0.0));
+      }
+    };
+    stand(4s);  // nothing applied for 4 s; the robot is truly at (0.1, 0), heading 0
+    const PoseMeasurement outlier{t, {Vec2(1.1, 0.6), 0.3}, rpe_covariance()};
+    const UgvEkf::Update first = ekf.update(outlier);
+    if (reacquire == 0.0) {
+      // Inside a gate that wide, it is taken: the estimate jumps towards it.
+      EXPECT_EQ(first, UgvEkf::Update::kApplied);
+      EXPECT_GT(ekf.pose().p.x(), 0.8);
+      continue;
+    }
+    EXPECT_EQ(first, UgvEkf::Update::kHeld);
+    EXPECT_NEAR(ekf.pose().p.x(), 0.0, 1e-9);  // untouched while held
+    stand(100ms);
+    EXPECT_EQ(ekf.update({t, {Vec2(0.12, -0.02), 0.01}, rpe_covariance()}),
+              UgvEkf::Update::kHeld);  // disagrees with the outlier: the outlier is dropped
+    EXPECT_EQ(ekf.counters().unconfirmed, 1u);
+    EXPECT_NEAR(ekf.pose().p.x(), 0.0, 1e-9);
+    stand(100ms);
+    EXPECT_EQ(ekf.update({t, {Vec2(0.08, 0.01), -0.01}, rpe_covariance()}),
+              UgvEkf::Update::kApplied);  // agrees: both applied
+    EXPECT_EQ(ekf.counters().updates, 2u);
+    EXPECT_NEAR(ekf.pose().p.x(), 0.1, 0.05);
+    EXPECT_NEAR(ekf.pose().p.y(), 0.0, 0.05);
+    stand(500ms);
+    EXPECT_EQ(ekf.update({t, {Vec2(0.1, 0.0), 0.0}, rpe_covariance()}), UgvEkf::Update::kApplied);
+    EXPECT_EQ(ekf.counters().held, 2u);
+  }
+}

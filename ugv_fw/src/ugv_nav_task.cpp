@@ -205,6 +205,7 @@ void UgvNavTask::read_relative_poses(TimePoint now) {
         replan_requested_ = true;
         break;
       case UgvEkf::Update::kApplied:
+      case UgvEkf::Update::kHeld:  // after a gap: the next confirms it
         break;
       case UgvEkf::Update::kRejectedGate:
         ++health_.rpe_outliers;

@@ -13,9 +13,14 @@
 // - the relative poses' reported covariance is scaled by what their innovations show
 //   (innovation-based covariance matching, Mehra 1972): an AprilTag pose's covariance is a
 //   constant while its true error grows with distance and obliquity. Only up, never below the
-//   reported one, and slowly (over ~50 updates) so that outliers cannot drive it.
+//   reported one, and slowly (over ~50 updates) so that outliers cannot drive it;
+// - after a gap (no relative pose applied for a few seconds: a blackout, the UAV elsewhere) the
+//   state is too uncertain to tell an outlier from a fix, and a gate wide enough for the truth
+//   lets a tag a metre off through: a relative pose is then held until the next one confirms it
+//   (their innovations agree), and only then are both applied.
 #include <algorithm>
 #include <cstdint>
+#include <optional>
 
 #include "colag/common/geometry.hpp"
 #include "colag/common/limits.hpp"
@@ -44,6 +49,10 @@ struct UgvEkfConfig {
   double gate_chi2 = 16.27;         // chi-square, 3 dof, 99.9 %: one false reject in 1000
   double robust_chi2 = 7.81;        // 95 %: beyond it a measurement is down-weighted (Huber)
   int reset_after_rejections = 25;  // consecutive gate rejections => re-initialise
+  // Re-acquisition: after this long without an applied relative pose one is applied only when
+  // the next, within the window, agrees with it (0: every one is applied on its own).
+  double reacquire_after_s = 3.0;
+  double reacquire_window_s = 1.0;
   bool adapt_measurement_noise = true;
   double max_measurement_noise_scale = 10.0;  // variance factor
   double measurement_noise_window = 50.0;     // updates averaged
@@ -57,6 +66,8 @@ struct UgvEkfCounters {
   std::uint64_t rejected_invalid = 0;   // NaN/Inf, non-positive covariance
   std::uint64_t rejected_odometry = 0;  // odometry out of order or not finite
   std::uint64_t resets = 0;
+  std::uint64_t held = 0;         // after a gap: waited for the next to confirm it
+  std::uint64_t unconfirmed = 0;  // held, and the next did not agree: dropped
 };
 
 class UgvEkf {
@@ -69,7 +80,8 @@ class UgvEkf {
     kRejectedGate,
     kRejectedStale,
     kRejectedInvalid,
-    kReset
+    kReset,
+    kHeld  // after a gap: applied when the next agrees with it
   };
 
   explicit UgvEkf(const UgvEkfConfig& config = {}) : config_(config) {}
@@ -102,6 +114,13 @@ class UgvEkf {
     UgvStateVec x = UgvStateVec::Zero();  // state at t (meaningful once initialised)
     UgvStateCov P = UgvStateCov::Zero();
   };
+  // The newest history step at or before `stamp` (1-based: 0 when older than all of them).
+  std::size_t step_at(TimePoint stamp) const;
+  // The measurement's innovation against the state at its stamp (history step k, 1-based).
+  Vec3 innovation_at(const PoseMeasurement& z, std::size_t k) const;
+  Update apply(const PoseMeasurement& z, std::size_t k);
+  // After a gap: whether `z` may be applied now (`held_` confirms it; `held_` is applied first).
+  bool confirmed(const PoseMeasurement& z);
   // Re-runs the prediction from history_[from] to the newest entry.
   void repropagate(std::size_t from);
   void advance(Step& cur, const Step& prev) const;  // cur from prev and cur's twist
@@ -110,7 +129,9 @@ class UgvEkf {
   UgvEkfConfig config_;
   bool initialized_ = false;
   int consecutive_rejections_ = 0;
-  double noise_mean_ = 1.0;  // used within [1, max]: measurement_noise_scale()
+  TimePoint last_applied_{};             // stamp of the newest relative pose applied
+  std::optional<PoseMeasurement> held_;  // after a gap: waiting for the next to confirm it
+  double noise_mean_ = 1.0;              // used within [1, max]: measurement_noise_scale()
   double noise_samples_ = 0.0;
   Step state_;                          // the newest state
   RingBuffer<Step, kHistory> history_;  // past states, oldest first; back() == state_
