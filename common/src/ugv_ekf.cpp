@@ -101,11 +101,11 @@ UgvEkf::Update UgvEkf::update(const PoseMeasurement& z) {
     history_.push_overwrite(s);
     k = 1;
   }
-  if (initialized_ && !confirmed(z)) return Update::kHeld;
+  if (initialized_ && !confirmed(z, k)) return Update::kHeld;
   return apply(z, k);
 }
 
-bool UgvEkf::confirmed(const PoseMeasurement& z) {
+bool UgvEkf::confirmed(const PoseMeasurement& z, std::size_t k) {
   if (!(config_.reacquire_after_s > 0.0) ||
       to_seconds(z.stamp - last_applied_) <= config_.reacquire_after_s) {
     return true;
@@ -118,7 +118,7 @@ bool UgvEkf::confirmed(const PoseMeasurement& z) {
     if (apart <= config_.reacquire_window_s && kf > 0) {
       // Both innovations carry the state's error at their stamps, which the odometry between
       // them (under a second) barely changes: what differs is the two measurements' own errors.
-      Vec3 d = innovation_at(z, step_at(z.stamp)) - innovation_at(first, kf);
+      Vec3 d = innovation_at(z, k) - innovation_at(first, kf);
       d.z() = wrap_angle(d.z());
       const Mat3 S = measurement_noise_scale() * (z.covariance + first.covariance);
       if (d.dot(S.ldlt().solve(d)) <= config_.gate_chi2) {

@@ -119,8 +119,9 @@ class UgvEkf {
   // The measurement's innovation against the state at its stamp (history step k, 1-based).
   Vec3 innovation_at(const PoseMeasurement& z, std::size_t k) const;
   Update apply(const PoseMeasurement& z, std::size_t k);
-  // After a gap: whether `z` may be applied now (`held_` confirms it; `held_` is applied first).
-  bool confirmed(const PoseMeasurement& z);
+  // After a gap: whether `z` (at history step k) may be applied now (`held_` confirms it;
+  // `held_` is applied first).
+  bool confirmed(const PoseMeasurement& z, std::size_t k);
   // Re-runs the prediction from history_[from] to the newest entry.
   void repropagate(std::size_t from);
   void advance(Step& cur, const Step& prev) const;  // cur from prev and cur's twist
