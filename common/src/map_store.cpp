@@ -22,6 +22,7 @@ void MapStore::each_span(CellIndex c, const Disc& disc, F&& f) const {
 MapStore::MapStore(const MapStoreConfig& config) : config_(config) {
   make_disc(config_.plan_inflation_m, plan_disc_);
   make_disc(config_.predict_inflation_m, predict_disc_);
+  if (config_.clearance_m > 0.0) make_disc(config_.clearance_m, clear_disc_);
   state_.fill(CellState::kUnknown);
   source_.fill(0);
   recount();
@@ -31,6 +32,7 @@ void MapStore::recount() {
   plan_count_.fill(0);
   near_occupied_.fill(0);
   near_unknown_.fill(0);
+  near_clear_.fill(0);
   const auto& g = geometry();
   if (config_.unknown_blocks_prediction) {
     // Every cell unknown first, so a cell's count is the number of disc cells inside the grid:
@@ -57,6 +59,7 @@ void MapStore::recount() {
     if (state_[i] != CellState::kOccupied) continue;
     stamp(c, plan_disc_, plan_count_, +1);
     stamp(c, predict_disc_, near_occupied_, +1);
+    stamp(c, clear_disc_, near_clear_, +1);
   }
   counters_.plan_cells_blocked = blocked_before;
 }
@@ -125,6 +128,8 @@ void MapStore::set_cell(CellIndex c, CellState s) {
   if (s == CellState::kOccupied) stamp(c, plan_disc_, plan_count_, +1);
   if (old == CellState::kOccupied) stamp(c, predict_disc_, near_occupied_, -1);
   if (s == CellState::kOccupied) stamp(c, predict_disc_, near_occupied_, +1);
+  if (old == CellState::kOccupied) stamp(c, clear_disc_, near_clear_, -1);
+  if (s == CellState::kOccupied) stamp(c, clear_disc_, near_clear_, +1);
   if (config_.unknown_blocks_prediction) {
     if (old == CellState::kUnknown) stamp(c, predict_disc_, near_unknown_, -1);
     if (s == CellState::kUnknown) stamp(c, predict_disc_, near_unknown_, +1);

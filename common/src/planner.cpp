@@ -127,7 +127,8 @@ bool Planner::search(CellIndex start, CellIndex goal) {
       const auto ni = static_cast<std::int32_t>(g.index(n));
       if (blocked(static_cast<std::size_t>(ni))) continue;
       if (k < 4) free_side[k] = true;
-      const float cost = g_[cur] + (k < 4 ? 1.0F : kSqrt2);
+      const float cost =
+          g_[cur] + (k < 4 ? 1.0F : kSqrt2) * step_weight(static_cast<std::size_t>(ni));
       if (seen_[ni] != generation_) {
         seen_[ni] = generation_;
         g_[ni] = cost;
@@ -145,7 +146,7 @@ bool Planner::search(CellIndex start, CellIndex goal) {
   return false;
 }
 
-bool Planner::line_of_sight(const Vec2& a, const Vec2& b) const {
+bool Planner::line_of_sight(const Vec2& a, const Vec2& b, float& cost) const {
   const auto& g = geometry();
   // The traversal stays within the box of the two end cells, give or take one cell where
   // rounding lets it step past b's cell: with both end cells a cell inside the grid, every
@@ -154,10 +155,28 @@ bool Planner::line_of_sight(const Vec2& a, const Vec2& b) const {
   const auto well_inside = [&](CellIndex c) {
     return c.x >= 1 && c.y >= 1 && c.x < g.cells_x() - 1 && c.y < g.cells_y() - 1;
   };
+  int cells = 0;
+  float weight = 0.0F;
+  bool hit = false;
   if (well_inside(g.cell_of(a)) && well_inside(g.cell_of(b))) {
-    return !any_cell_on_segment(g, a, b, [&](CellIndex c) { return blocked(g.index(c)); });
+    hit = any_cell_on_segment(g, a, b, [&](CellIndex c) {
+      const std::size_t i = g.index(c);
+      ++cells;
+      weight += step_weight(i);
+      return blocked(i);
+    });
+  } else {
+    hit = any_cell_on_segment(g, a, b, [&](CellIndex c) {
+      if (blocked(c)) return true;
+      ++cells;
+      weight += step_weight(g.index(c));
+      return false;
+    });
   }
-  return !any_cell_on_segment(g, a, b, [&](CellIndex c) { return blocked(c); });
+  // The segment's length in cells, each part weighted as the cells it crosses.
+  const auto length = static_cast<float>((b - a).norm() / g.resolution());
+  cost = cells > 0 ? length * weight / static_cast<float>(cells) : length;
+  return !hit;
 }
 
 void Planner::smooth(const Vec2& start, const Vec2& goal, Path& out) {
@@ -167,13 +186,23 @@ void Planner::smooth(const Vec2& start, const Vec2& goal, Path& out) {
     if (i == cells_.size() + 1) return goal;
     return geometry().center_of(cells_[i - 1]);
   };
+  // The search's cost from the start to each point (the goal: its cell's).
+  const auto cost_at = [&](std::size_t i) {
+    if (i == 0) return 0.0F;
+    return g_[geometry().index(cells_[std::min(i, cells_.size()) - 1])];
+  };
+  // A shortcut may cost what the grid path did between its ends, and a little more: the grid's
+  // own zig-zag (octile steps) is no reason to keep one.
+  constexpr float kSlack = 0.5F;
   const std::size_t n = cells_.size() + 2;
   out.waypoints.clear();
   (void)out.waypoints.push_back(start);
   std::size_t anchor = 0;
   while (anchor + 1 < n) {
     std::size_t next = anchor + 1;
-    while (next + 1 < n && line_of_sight(point(anchor), point(next + 1)))
+    float cost = 0.0F;
+    while (next + 1 < n && line_of_sight(point(anchor), point(next + 1), cost) &&
+           (clearance_cost_ == 0.0F || cost <= cost_at(next + 1) - cost_at(anchor) + kSlack))
       ++next;
     if (!out.waypoints.push_back(point(next))) break;  // capacity: the plan ends early
     anchor = next;

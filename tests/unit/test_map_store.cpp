@@ -101,7 +101,7 @@ TEST_F(MapStoreTest, AUavsUnknownCellsDoNotEraseWhatAnotherUavMadeKnown) {
 TEST_F(MapStoreTest, IncrementalViewsEqualARecomputationAfterRandomPatches) {
   for (const double corner : {-2.0, -20.0}) {
     SCOPED_TRACE(corner);
-    map = std::make_unique<MapStore>();
+    map = std::make_unique<MapStore>(MapStoreConfig{.clearance_m = 0.7});
     check_against_recomputation(corner, corner);
   }
 }
@@ -121,16 +121,18 @@ void MapStoreTest::check_against_recomputation(double x0, double y0) {
   for (int y = c0.y; y <= c1.y; ++y) {
     for (int x = c0.x; x <= c1.x; ++x) {
       if (!g.contains(CellIndex{x, y})) continue;
-      bool plan = false, predict = false;
-      for (int yy = y - 6; yy <= y + 6; ++yy) {
-        for (int xx = x - 6; xx <= x + 6; ++xx) {
+      bool plan = false, predict = false, band = false;
+      for (int yy = y - 8; yy <= y + 8; ++yy) {
+        for (int xx = x - 8; xx <= x + 8; ++xx) {
           if (!g.contains(CellIndex{xx, yy})) continue;  // no cell there: neither view counts it
           const CellState s = map->state({xx, yy});
           const double d = gap_m({x, y}, {xx, yy});
           plan |= s == CellState::kOccupied && d <= 0.4 + 1e-9;
           predict |= s != CellState::kFree && d <= 0.25 + 1e-9;
+          band |= s == CellState::kOccupied && d <= 0.7 + 1e-9;
         }
       }
+      ASSERT_EQ(map->in_clearance_band_at(g.index({x, y})), band) << x << "," << y;
       ASSERT_EQ(map->plan_blocked(CellIndex{x, y}), plan) << x << "," << y;
       ASSERT_EQ(map->predict_blocked(CellIndex{x, y}), predict) << x << "," << y;
     }
@@ -212,8 +214,9 @@ TEST(MapStoreOptions, WhenUnknownDoesNotBlockOnlyOccupiedCellsBlockPrediction) {
 // that was at the new place from the start and received the same patches (each cell of the new
 // window compared, by world position).
 TEST(MapStoreWindow, AMovedWindowIsTheMapThatWasThereFromTheStart) {
-  const auto moved = std::make_unique<MapStore>();
-  const auto fresh = std::make_unique<MapStore>();
+  const MapStoreConfig config{.clearance_m = 0.6};
+  const auto moved = std::make_unique<MapStore>(config);
+  const auto fresh = std::make_unique<MapStore>(config);
   const Vec2 to(-20.0 + 7.3, -20.0 - 12.0);  // +73 and -120 cells
   ASSERT_TRUE(fresh->move_to(to));
   Rng rng(5);
@@ -244,6 +247,8 @@ TEST(MapStoreWindow, AMovedWindowIsTheMapThatWasThereFromTheStart) {
           << x << "," << y;
       ASSERT_EQ(moved->near_occupied_at(g.index({x, y})),
                 fresh->near_occupied_at(fresh->geometry().index(f)));
+      ASSERT_EQ(moved->in_clearance_band_at(g.index({x, y})),
+                fresh->in_clearance_band_at(fresh->geometry().index(f)));
       occupied += moved->state(CellIndex{x, y}) == CellState::kOccupied ? 1 : 0;
     }
   }

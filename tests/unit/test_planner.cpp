@@ -95,6 +95,70 @@ TEST_F(PlannerTest, FindsTheShortestRouteThroughAGap) {
     EXPECT_GT(w.x(), -0.5);  // it went through the gap
 }
 
+namespace {
+// The closest any point of the path comes to an occupied cell (sampled every 2 cm), up to 1 m.
+double path_clearance_m(const MapStore& map, const Path& path) {
+  double closest = 1.0;
+  for (std::size_t i = 1; i < path.waypoints.size(); ++i) {
+    const Vec2 a = path.waypoints[i - 1], b = path.waypoints[i];
+    const int n = static_cast<int>((b - a).norm() / 0.02) + 1;
+    for (int k = 0; k <= n; ++k)
+      closest = std::min(closest, map.occupied_distance(a + (b - a) * (double(k) / n), 1.0));
+  }
+  return closest;
+}
+}  // namespace
+
+TEST(PlannerClearance, KeepsClearOfACornerWhereTheDetourIsCheap) {
+  // A 2 m box across the straight line: the plain path rounds its corner at the P-Map's 0.4 m;
+  // with the clearance band (0.7 m, steps in it cost twice) the path keeps ~0.7 m, for a few
+  // centimetres more length.
+  const auto box = [](const Vec2& p) {
+    return (p.cwiseAbs().maxCoeff() < 1.0) ? CellState::kOccupied : CellState::kFree;
+  };
+  const Vec2 start(-4.05, -0.55), goal(4.05, 0.45);
+  Path plain, clear;
+  const auto plain_map = std::make_unique<MapStore>();
+  ASSERT_TRUE(test::fill_map(*plain_map, -6, -6, 6, 6, box));
+  ASSERT_EQ(Planner().plan(*plain_map, start, goal, {}, plain), PlanResult::kOk);
+  const auto band_map = std::make_unique<MapStore>(MapStoreConfig{.clearance_m = 0.7});
+  ASSERT_TRUE(test::fill_map(*band_map, -6, -6, 6, 6, box));
+  auto planner = std::make_unique<Planner>(PlannerConfig{.clearance_cost = 1.0});
+  ASSERT_EQ(planner->plan(*band_map, start, goal, {}, clear), PlanResult::kOk);
+  EXPECT_LT(path_clearance_m(*plain_map, plain), 0.55);
+  EXPECT_GE(path_clearance_m(*band_map, clear), 0.65);
+  EXPECT_LT(clear.length_m, plain.length_m + 0.5);
+  // The band changes the cost, not what is blocked: the plain planner on the band's map plans
+  // the plain path.
+  Path again;
+  ASSERT_EQ(Planner().plan(*band_map, start, goal, {}, again), PlanResult::kOk);
+  EXPECT_NEAR(again.length_m, plain.length_m, 1e-9);
+}
+
+TEST(PlannerClearance, StillTakesAGapNarrowerThanTheBand) {
+  // A wall from x = -6 to 6 with a 1.2 m gap at x in [2, 3.2]: the whole gap is in the band,
+  // the way round the wall's end is ~8 m longer. The path still goes through the gap.
+  const auto wall = [](const Vec2& p) {
+    const bool in_wall =
+        std::abs(p.y()) < 0.1 && std::abs(p.x()) < 6.0 && !(p.x() > 2.0 && p.x() < 3.2);
+    return in_wall ? CellState::kOccupied : CellState::kFree;
+  };
+  const auto map = std::make_unique<MapStore>(MapStoreConfig{.clearance_m = 0.7});
+  ASSERT_TRUE(test::fill_map(*map, -8, -5, 8, 5, wall));
+  auto planner = std::make_unique<Planner>(PlannerConfig{.clearance_cost = 1.0});
+  Path path;
+  ASSERT_EQ(planner->plan(*map, Vec2(0.05, -3.05), Vec2(0.05, 2.95), {}, path), PlanResult::kOk);
+  EXPECT_LT(path.length_m, 9.0);
+  // Where the path crosses y = 0: in the gap (its free part, 0.4 m from each side).
+  for (std::size_t i = 1; i < path.waypoints.size(); ++i) {
+    const Vec2 a = path.waypoints[i - 1], b = path.waypoints[i];
+    if ((a.y() < 0.0) == (b.y() < 0.0)) continue;
+    const double x = a.x() + (b.x() - a.x()) * (0.0 - a.y()) / (b.y() - a.y());
+    EXPECT_GT(x, 2.35);
+    EXPECT_LT(x, 2.85);
+  }
+}
+
 TEST_F(PlannerTest, PlansWhereTheMapsWindowIsAfterItMoved) {
   // The window moved 60 m east: the same wall-with-gap scene there is planned through the gap,
   // as optimal as A* on the independent Dijkstra, and the old place is now outside.

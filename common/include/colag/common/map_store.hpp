@@ -4,6 +4,9 @@
 // - P-Map  (planning): occupied cells inflated by plan_inflation_m; unknown counts as free.
 // - CP-Map (collision prediction): occupied and unknown cells inflated by
 //   predict_inflation_m; everything is unknown (blocked) until patches arrive.
+// - the clearance band (optional): cells within clearance_m of an occupied cell, where the
+//   planner's steps cost more (Planner: clearance_cost), so that a path keeps room for the
+//   robot's position uncertainty where the site leaves it.
 // Inflation is exact in the safe direction: a cell is blocked when any point of it is within
 // the radius of any point of a source cell (square-to-square distance), so "not blocked" means
 // "more than the radius from every obstacle cell".
@@ -25,6 +28,8 @@ struct MapStoreConfig {
   // Unknown cells block the CP-Map (a blind robot). False for a robot that sees for itself
   // (the self-perception baseline): only occupied cells block.
   bool unknown_blocks_prediction = true;
+  // The clearance band's radius (0: none; at most kMaxInflationCells cells).
+  double clearance_m = 0.0;
 };
 
 struct MapStoreCounters {
@@ -73,6 +78,8 @@ class MapStore {
   // The two reasons a CP-Map cell is blocked: an occupied or an unknown cell within the radius.
   bool near_occupied_at(std::size_t i) const { return near_occupied_[i] > 0; }
   bool near_unknown_at(std::size_t i) const { return near_unknown_[i] > 0; }
+  // Within clearance_m of an occupied cell (always false with clearance_m 0).
+  bool in_clearance_band_at(std::size_t i) const { return near_clear_[i] > 0; }
   // Distance from p to the nearest occupied cell's square, searching up to max_m (returned if
   // none is closer).
   double occupied_distance(const Vec2& p, double max_m) const;
@@ -117,8 +124,10 @@ class MapStore {
   Counts plan_count_;                                      // occupied cells within plan_inflation_m
   Counts near_occupied_;  // occupied cells within predict_inflation_m
   Counts near_unknown_;   // unknown cells within predict_inflation_m (if they block prediction)
+  Counts near_clear_;     // occupied cells within clearance_m
   Disc plan_disc_;
   Disc predict_disc_;
+  Disc clear_disc_;  // empty (no rows) with clearance_m 0: stamping it touches nothing
   PatchCells scratch_;
 };
 

@@ -4,6 +4,11 @@
 // whose segments cross only free P-Map cells. Static memory: per-cell arrays sized from the
 // limits header, reset between searches by a generation counter instead of clearing.
 // Other UGVs enter as discs blocked for this search only.
+// Clearance: a step into the map's clearance band (MapStore::in_clearance_band_at) costs
+// (1 + clearance_cost) times its length, so the path keeps away from obstacles where a detour
+// is cheap, and the string is pulled only where that does not cost more than the grid path did
+// (a plain shortcut would hug the corners again).
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <span>
@@ -22,6 +27,7 @@ struct DiscObstacle {
 struct PlannerConfig {
   std::size_t max_expansions = limits::kGridCells2d;
   double escape_radius_m = 1.0;  // how far the start/goal may be moved out of blocked cells
+  double clearance_cost = 0.0;   // extra cost per cell length inside the clearance band
 };
 
 enum class PlanResult : std::uint8_t { kOk, kNoPath, kStartBlocked, kGoalBlocked };
@@ -34,7 +40,9 @@ struct Path {
 
 class Planner {
  public:
-  explicit Planner(const PlannerConfig& config = {}) : config_(config) {}
+  explicit Planner(const PlannerConfig& config = {})
+      : config_(config),
+        clearance_cost_(static_cast<float>(std::max(config.clearance_cost, 0.0))) {}
 
   PlanResult plan(const MapStore& map, const Vec2& start, const Vec2& goal,
                   std::span<const DiscObstacle> others, Path& out);
@@ -53,7 +61,12 @@ class Planner {
   const GridGeometry2d& geometry() const { return map_->geometry(); }  // during plan()
   bool nearest_free(CellIndex from, CellIndex& out) const;
   bool search(CellIndex start, CellIndex goal);
-  bool line_of_sight(const Vec2& a, const Vec2& b) const;
+  // True when the segment crosses no blocked cell; `cost` is its length in cells weighted as
+  // the search weighs its steps.
+  bool line_of_sight(const Vec2& a, const Vec2& b, float& cost) const;
+  float step_weight(std::size_t i) const {
+    return map_->in_clearance_band_at(i) ? 1.0F + clearance_cost_ : 1.0F;
+  }
   void smooth(const Vec2& start, const Vec2& goal, Path& out);
 
   // Indexed binary heap on f (ties: smaller h first).
@@ -72,6 +85,7 @@ class Planner {
   static constexpr int kDy[8] = {0, 0, 1, -1, 1, -1, 1, -1};
 
   PlannerConfig config_;
+  float clearance_cost_ = 0.0F;
   const MapStore* map_ = nullptr;
   // Per-cell stamps: 16 bits is enough (a wrap clears them: once in 65 535 plans).
   std::uint16_t generation_ = 0;

@@ -35,9 +35,13 @@ struct UgvNavConfig {
 
   double body_radius_m = 0.25;
   UgvEkfConfig ekf;
-  MapStoreConfig map;
+  // The planner keeps its path clearance_m from obstacles where a detour costs less than twice
+  // the length it saves (clearance_cost 1): room for the 3-sigma position uncertainty the
+  // collision prediction checks (0.45 m beyond the body's 0.25 m). A path that hugged the
+  // P-Map's 0.4 m inflation stopped the robot for the UAV whenever its 3 sigma passed 0.15 m.
+  MapStoreConfig map{.clearance_m = 0.7};
   WindowPolicy map_window;  // when the map's window moves with the robot (map_window.hpp)
-  PlannerConfig planner;
+  PlannerConfig planner{.clearance_cost = 1.0};
   TrajectoryLimits limits;
   ControllerConfig controller;
   PredictorConfig predictor;
