@@ -133,6 +133,15 @@ TEST(PlannerClearance, KeepsClearOfACornerWhereTheDetourIsCheap) {
   Path again;
   ASSERT_EQ(Planner().plan(*band_map, start, goal, {}, again), PlanResult::kOk);
   EXPECT_NEAR(again.length_m, plain.length_m, 1e-9);
+  // A robot sure of where it is uses none of the cost (the UGV scales it by its recent 3 sigma),
+  // half of it keeps some of the room.
+  planner->set_clearance_share(0.0);
+  ASSERT_EQ(planner->plan(*band_map, start, goal, {}, again), PlanResult::kOk);
+  EXPECT_NEAR(again.length_m, plain.length_m, 1e-9);
+  planner->set_clearance_share(0.5);
+  EXPECT_FLOAT_EQ(planner->clearance_cost(), 0.5F);
+  ASSERT_EQ(planner->plan(*band_map, start, goal, {}, again), PlanResult::kOk);
+  EXPECT_GT(path_clearance_m(*band_map, again), path_clearance_m(*plain_map, plain));
 }
 
 TEST(PlannerClearance, StillTakesAGapNarrowerThanTheBand) {

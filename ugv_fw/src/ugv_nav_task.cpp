@@ -342,6 +342,7 @@ void UgvNavTask::planning_step(TimePoint now) {
   // The UAV cannot see the ground under this robot (its body hides it): it is free, since the
   // robot stands on it.
   (void)map_.free_under(ekf_.pose().p, config_.body_radius_m);
+  track_uncertainty();
   collect_others(now);
   if (!arrived_ && !aborted_ && !faulty() && replan_needed(now)) replan(now);
   predict_and_request(now);
@@ -490,6 +491,10 @@ void UgvNavTask::replan(TimePoint now) {
   // metre inside); the window moves on before the robot gets there.
   const Vec2 here = ekf_.pose().p;
   const Vec2 to = clip_into(map_.geometry(), here, target(), kWindowGoalMargin_m);
+  // Room for the uncertainty it has had lately, beyond what the P-Map's inflation leaves.
+  const double room = config_.map.plan_inflation_m - config_.map.predict_inflation_m;
+  const double band = config_.map.clearance_m - config_.map.plan_inflation_m;
+  planner_.set_clearance_share(band > 0.0 ? (recent_3sigma_m_ - room) / band : 0.0);
   const PlanResult r = planner_.plan(map_, here, to, others_plan_, path_);
   if (r != PlanResult::kOk || !trajectory_.build(path_, controller_.last_v(), config_.limits)) {
     ++health_.plan_failures;
@@ -547,10 +552,19 @@ void UgvNavTask::predict_and_request(TimePoint now) {
   if (support_.update(now, config_.id, need, ci)) publish_request(ci);
 }
 
+void UgvNavTask::track_uncertainty() {
+  const double dt = std::chrono::duration<double>(config_.schedule.planning.period).count();
+  const double fade =
+      config_.clearance_memory_s > 0.0 ? std::exp(-dt / config_.clearance_memory_s) : 0.0;
+  recent_3sigma_m_ = std::max(three_sigma_m(), recent_3sigma_m_ * fade);
+}
+
+double UgvNavTask::three_sigma_m() const {
+  return sigma_ellipse(ekf_.pose().p, ekf_.covariance().topLeftCorner<2, 2>(), 3.0).axes().a_m;
+}
+
 bool UgvNavTask::sure_of_position() const {
-  const double three_sigma_m =
-      sigma_ellipse(ekf_.pose().p, ekf_.covariance().topLeftCorner<2, 2>(), 3.0).axes().a_m;
-  return three_sigma_m <= config_.arrival_max_uncertainty_m;
+  return three_sigma_m() <= config_.arrival_max_uncertainty_m;
 }
 
 msg::BlockedReason UgvNavTask::standing_reason() const {

@@ -47,6 +47,14 @@ class Planner {
   PlanResult plan(const MapStore& map, const Vec2& start, const Vec2& goal,
                   std::span<const DiscObstacle> others, Path& out);
 
+  // The share of config().clearance_cost the next plans use (clamped to [0, 1]): a robot sure
+  // of where it is needs less room.
+  void set_clearance_share(double share) {
+    clearance_cost_ =
+        static_cast<float>(std::max(config_.clearance_cost, 0.0) * std::clamp(share, 0.0, 1.0));
+  }
+  float clearance_cost() const { return clearance_cost_; }
+
   std::size_t last_expansions() const { return expansions_; }
   // Length of the last A* grid path (before shortcutting), metres.
   double last_grid_cost_m() const { return grid_cost_m_; }

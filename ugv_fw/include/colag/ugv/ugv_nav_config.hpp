@@ -39,7 +39,11 @@ struct UgvNavConfig {
   // the length it saves (clearance_cost 1): room for the 3-sigma position uncertainty the
   // collision prediction checks (0.45 m beyond the body's 0.25 m). A path that hugged the
   // P-Map's 0.4 m inflation stopped the robot for the UAV whenever its 3 sigma passed 0.15 m.
+  // The cost is scaled by how far the robot's recent 3 sigma (its largest, fading with
+  // clearance_memory_s) went past that 0.15 m, up to the band's 0.3 m: a robot the UAVs fix often
+  // plans the plain path (with two UAVs on dense 7 the full band only made paths longer).
   MapStoreConfig map{.clearance_m = 0.7};
+  double clearance_memory_s = 20.0;
   WindowPolicy map_window;  // when the map's window moves with the robot (map_window.hpp)
   PlannerConfig planner{.clearance_cost = 1.0};
   TrajectoryLimits limits;

@@ -195,6 +195,8 @@ class UgvNavTask {
   }
   void sum_stamp_counters();
   msg::BlockedReason standing_reason() const;
+  void track_uncertainty();       // recent_3sigma_m_, each planning step
+  double three_sigma_m() const;   // the position's 3-sigma ellipse's semi-major axis
   bool sure_of_position() const;  // 3 sigma within arrival_max_uncertainty_m: may arrive
   // Two relative poses before initialisation agree (see UgvNavConfig::init_needs_agreement).
   bool agrees_with_init_candidate(const PoseMeasurement& z) const;
@@ -274,6 +276,7 @@ class UgvNavTask {
   TimePoint last_plan_{};
   WaitingParts waiting_parts_{};
   double cross_track_m_ = 0.0;
+  double recent_3sigma_m_ = 0.0;  // the largest 3-sigma lately (fading): the planner's clearance
   double v_cmd_ = 0.0;
   double wheel_speed_ = 0.0;  // the newest wheel odometry's twist
   double still_speed_ = 0.0;  // |v| of the last few samples
