@@ -157,22 +157,16 @@ bool Planner::line_of_sight(const Vec2& a, const Vec2& b, float& cost) const {
   };
   int cells = 0;
   float weight = 0.0F;
-  bool hit = false;
-  if (well_inside(g.cell_of(a)) && well_inside(g.cell_of(b))) {
-    hit = any_cell_on_segment(g, a, b, [&](CellIndex c) {
-      const std::size_t i = g.index(c);
-      ++cells;
-      weight += step_weight(i);
-      return blocked(i);
-    });
-  } else {
-    hit = any_cell_on_segment(g, a, b, [&](CellIndex c) {
-      if (blocked(c)) return true;
-      ++cells;
-      weight += step_weight(g.index(c));
-      return false;
-    });
-  }
+  const auto visit = [&](std::size_t i) {  // counts the cell, then: is it blocked?
+    ++cells;
+    weight += step_weight(i);
+    return blocked(i);
+  };
+  const bool hit =
+      well_inside(g.cell_of(a)) && well_inside(g.cell_of(b))
+          ? any_cell_on_segment(g, a, b, [&](CellIndex c) { return visit(g.index(c)); })
+          : any_cell_on_segment(g, a, b,
+                                [&](CellIndex c) { return !g.contains(c) || visit(g.index(c)); });
   // The segment's length in cells, each part weighted as the cells it crosses.
   const auto length = static_cast<float>((b - a).norm() / g.resolution());
   cost = cells > 0 ? length * weight / static_cast<float>(cells) : length;

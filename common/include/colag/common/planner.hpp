@@ -40,9 +40,7 @@ struct Path {
 
 class Planner {
  public:
-  explicit Planner(const PlannerConfig& config = {})
-      : config_(config),
-        clearance_cost_(static_cast<float>(std::max(config.clearance_cost, 0.0))) {}
+  explicit Planner(const PlannerConfig& config = {}) : config_(config) { set_clearance_share(1.0); }
 
   PlanResult plan(const MapStore& map, const Vec2& start, const Vec2& goal,
                   std::span<const DiscObstacle> others, Path& out);
