@@ -101,13 +101,17 @@ UgvEkf::Update UgvEkf::update(const PoseMeasurement& z) {
     history_.push_overwrite(s);
     k = 1;
   }
-  if (initialized_ && !confirmed(z, k)) return Update::kHeld;
-  return apply(z, k);
+  const bool starting = !initialized_;
+  if (!confirmed(z, k)) return Update::kHeld;
+  const Update u = apply(z, k);
+  return starting && initialized_ ? Update::kInitialized : u;
 }
 
 bool UgvEkf::confirmed(const PoseMeasurement& z, std::size_t k) {
-  if (!(config_.reacquire_after_s > 0.0) ||
-      to_seconds(z.stamp - last_applied_) <= config_.reacquire_after_s) {
+  const bool starting = !initialized_;
+  if (starting ? !(config_.start_window_s > 0.0)
+               : !(config_.reacquire_after_s > 0.0) ||
+                     to_seconds(z.stamp - last_applied_) <= config_.reacquire_after_s) {
     return true;
   }
   if (held_) {
@@ -115,22 +119,35 @@ bool UgvEkf::confirmed(const PoseMeasurement& z, std::size_t k) {
     held_.reset();
     const double apart = std::abs(to_seconds(z.stamp - first.stamp));
     const std::size_t kf = step_at(first.stamp);
-    if (apart <= config_.reacquire_window_s && kf > 0) {
-      // Both innovations carry the state's error at their stamps, which the odometry between
-      // them (under a second) barely changes: what differs is the two measurements' own errors.
-      Vec3 d = innovation_at(z, k) - innovation_at(first, kf);
-      d.z() = wrap_angle(d.z());
-      const Mat3 S = measurement_noise_scale() * (z.covariance + first.covariance);
-      if (d.dot(S.ldlt().solve(d)) <= config_.gate_chi2) {
-        (void)apply(first, kf);
-        return true;
-      }
+    if (apart <= (starting ? config_.start_window_s : config_.reacquire_window_s) &&
+        (starting || kf > 0) && agree(z, k, first, kf)) {
+      // The first is applied before this one; at the start, one older than the odometry
+      // history is not, and this one starts the estimator (it agreed with it).
+      if (kf > 0) (void)apply(first, kf);
+      return true;
     }
     ++counters_.unconfirmed;
   }
   held_ = z;
   ++counters_.held;
   return false;
+}
+
+bool UgvEkf::agree(const PoseMeasurement& a, std::size_t ka, const PoseMeasurement& b,
+                   std::size_t kb) const {
+  // Initialised, both innovations carry the state's error at their stamps, which the odometry
+  // between them (under a second) barely changes: what differs is the two measurements' own
+  // errors. Before the start the robot stands: the measurements themselves are compared.
+  Vec3 d;
+  if (initialized_) {
+    d = innovation_at(a, ka) - innovation_at(b, kb);
+  } else {
+    d = Vec3(a.pose.p.x() - b.pose.p.x(), a.pose.p.y() - b.pose.p.y(),
+             a.pose.yaw_rad - b.pose.yaw_rad);
+  }
+  d.z() = wrap_angle(d.z());
+  const Mat3 S = measurement_noise_scale() * (a.covariance + b.covariance);
+  return d.dot(S.ldlt().solve(d)) <= config_.gate_chi2;
 }
 
 UgvEkf::Update UgvEkf::apply(const PoseMeasurement& z, std::size_t k) {

@@ -96,7 +96,9 @@ void BM_EstimatorAndControl(benchmark::State& state) {
   Trajectory traj;
   planner->plan(*s.map, Vec2(0, 16), Vec2(0, -16), {}, path);
   traj.build(path, 0.0, {});
-  UgvEkf ekf;
+  UgvEkfConfig ekf_config;
+  ekf_config.start_window_s = 0.0;  // started from the first relative pose
+  UgvEkf ekf(ekf_config);
   Mat3 R = Vec3(0.04, 0.04, 0.0025).asDiagonal();
   (void)ekf.update({TimePoint{}, {Vec2(0, 16), -M_PI / 2}, R});
   Controller controller({}, {});

@@ -26,6 +26,22 @@ UgvEkfConfig white_noise_config() {
   c.calibration.estimate = false;
   c.adapt_measurement_noise = false;
   c.frame_walk_m_per_sqrt_s = 0.0;  // located in a frame fixed to the ground
+  c.start_window_s = 0.0;           // the first relative pose starts it (see StartsFrom...)
+  return c;
+}
+
+// The robot stands for `d`: odometry of no motion at 50 Hz, `t` moved on.
+void stand_still(UgvEkf& ekf, TimePoint& t, Duration d) {
+  for (const TimePoint end = t + d; t < end;) {
+    t += kOdomPeriod;
+    ASSERT_TRUE(ekf.predict(t, 0.0, 0.0));
+  }
+}
+
+// The defaults, but started from the first relative pose.
+UgvEkfConfig one_shot() {
+  UgvEkfConfig c;
+  c.start_window_s = 0.0;
   return c;
 }
 
@@ -277,7 +293,7 @@ TEST(UgvEkf, CovarianceGrowthMatchesTheClosedFormOnAStraightLine) {
 // grows only by the frame's wander, the same in every direction (the UAV's odometry frame it is
 // located in moves under it). Driving adds the wheels' noise on top.
 TEST(UgvEkf, StandingStillOnlyTheFrameWandersAndTheHeadingStaysKnown) {
-  UgvEkfConfig config;
+  UgvEkfConfig config = one_shot();
   config.calibration.estimate = false;
   config.frame_walk_m_per_sqrt_s = 0.005;
   UgvEkf ekf(config);
@@ -337,7 +353,7 @@ TEST(UgvEkf, AnUncertainHeadingWidensTheCovarianceAlongThePath) {
 }
 
 TEST(UgvEkf, RejectsAMeasurementFarOutsideTheGateThenResetsIfItPersists) {
-  UgvEkfConfig cfg;
+  UgvEkfConfig cfg = one_shot();
   cfg.reset_after_rejections = 5;
   UgvEkf ekf(cfg);
   ASSERT_EQ(ekf.update({TimePoint{}, {Vec2(0, 0), 0.0}, rpe_covariance()}),
@@ -375,7 +391,7 @@ TEST(UgvEkf, AMeasurementBeyondTheRobustBoundPullsLessThanOneInside) {
 }
 
 TEST(UgvEkf, AngleWrapAcrossPlusMinusPi) {
-  UgvEkf ekf;
+  UgvEkf ekf(one_shot());
   ASSERT_EQ(ekf.update({TimePoint{}, {Vec2(0, 0), 3.10}, rpe_covariance()}),
             UgvEkf::Update::kInitialized);
   // -3.10 is 0.083 rad away across the wrap, not 6.2 rad.
@@ -402,7 +418,7 @@ TEST(UgvEkf, ALateMeasurementGivesTheSameStateAsOneInTime) {
   const PoseMeasurement init{TimePoint{}, {Vec2(0, 0), 0.0}, rpe_covariance()};
   const PoseMeasurement z{TimePoint{20 * kOdomPeriod}, {Vec2(0.3, 0.1), 0.08}, rpe_covariance()};
 
-  UgvEkf in_time, late;
+  UgvEkf in_time(one_shot()), late(one_shot());
   in_time.update(init);
   late.update(init);
   for (int k = 1; k <= 60; ++k) {
@@ -419,7 +435,7 @@ TEST(UgvEkf, ALateMeasurementGivesTheSameStateAsOneInTime) {
 }
 
 TEST(UgvEkf, RejectsInvalidStaleAndOutOfOrderInput) {
-  UgvEkf ekf;
+  UgvEkf ekf(one_shot());
   const double nan = std::numeric_limits<double>::quiet_NaN();
   EXPECT_EQ(ekf.update({TimePoint{}, {Vec2(nan, 0), 0.0}, rpe_covariance()}),
             UgvEkf::Update::kRejectedInvalid);
@@ -441,7 +457,7 @@ TEST(UgvEkf, RejectsInvalidStaleAndOutOfOrderInput) {
 }
 
 TEST(UgvEkf, InitialisesAtTheMeasurementTimeAndCatchesUpWithOdometry) {
-  UgvEkf ekf;
+  UgvEkf ekf(one_shot());
   for (int k = 1; k <= 50; ++k)
     ASSERT_TRUE(ekf.predict(TimePoint{k * kOdomPeriod}, 0.5, 0.0));
   EXPECT_FALSE(ekf.initialized());
@@ -464,12 +480,7 @@ TEST(UgvEkf, AfterAGapARelativePoseWaitsForTheNextToConfirmIt) {
     ASSERT_TRUE(ekf.predict(t, 0.0, 0.0));
     const Mat3 unsure = Vec3(1.0, 1.0, 0.3 * 0.3).asDiagonal();
     ASSERT_EQ(ekf.update({t, {Vec2(0.0, 0.0), 0.0}, unsure}), UgvEkf::Update::kInitialized);
-    const auto stand = [&](Duration d) {
-      for (const TimePoint end = t + d; t < end;) {
-        t += kOdomPeriod;
-        ASSERT_TRUE(ekf.predict(t, 0.0, 0.0));
-      }
-    };
+    const auto stand = [&](Duration d) { stand_still(ekf, t, d); };
     stand(4s);  // nothing applied for 4 s; the robot is truly at (0.1, 0), heading 0
     const PoseMeasurement outlier{t, {Vec2(1.1, 0.6), 0.3}, rpe_covariance()};
     const UgvEkf::Update first = ekf.update(outlier);
@@ -495,5 +506,43 @@ TEST(UgvEkf, AfterAGapARelativePoseWaitsForTheNextToConfirmIt) {
     stand(500ms);
     EXPECT_EQ(ekf.update({t, {Vec2(0.1, 0.0), 0.0}, rpe_covariance()}), UgvEkf::Update::kApplied);
     EXPECT_EQ(ekf.counters().held, 2u);
+  }
+}
+
+// The start: nothing checks the first relative pose, so it waits for one that agrees with it.
+// An outlier first is dropped when the next disagrees; the next pair that agrees starts the
+// estimator (both applied). One older than the window confirms nothing. Window 0: the first
+// starts it alone.
+TEST(UgvEkf, StartsFromTwoRelativePosesThatAgree) {
+  for (const double window : {2.0, 0.0}) {
+    UgvEkfConfig cfg = white_noise_config();
+    cfg.start_window_s = window;
+    UgvEkf ekf(cfg);
+    TimePoint t{};
+    const auto stand = [&](Duration d) { stand_still(ekf, t, d); };
+    stand(100ms);  // the robot stands at (0, 0), heading 0
+    const UgvEkf::Update first = ekf.update({t, {Vec2(1.5, 1.0), 0.3}, rpe_covariance()});
+    if (window == 0.0) {
+      EXPECT_EQ(first, UgvEkf::Update::kInitialized);  // on the outlier
+      EXPECT_GT(ekf.pose().p.x(), 1.4);
+      continue;
+    }
+    EXPECT_EQ(first, UgvEkf::Update::kHeld);
+    EXPECT_FALSE(ekf.initialized());
+    stand(100ms);
+    EXPECT_EQ(ekf.update({t, {Vec2(0.02, -0.01), 0.01}, rpe_covariance()}),
+              UgvEkf::Update::kHeld);  // unlike the outlier: the outlier is dropped
+    EXPECT_EQ(ekf.counters().unconfirmed, 1u);
+    EXPECT_FALSE(ekf.initialized());
+    stand(2500ms);  // too late to confirm the one before
+    EXPECT_EQ(ekf.update({t, {Vec2(-0.02, 0.01), -0.01}, rpe_covariance()}), UgvEkf::Update::kHeld);
+    EXPECT_EQ(ekf.counters().unconfirmed, 2u);
+    stand(100ms);
+    EXPECT_EQ(ekf.update({t, {Vec2(0.01, 0.02), 0.0}, rpe_covariance()}),
+              UgvEkf::Update::kInitialized);  // agrees: both applied
+    EXPECT_EQ(ekf.counters().updates, 1u);    // the first starts it, the second is fused
+    EXPECT_NEAR(ekf.pose().p.x(), 0.0, 0.03);
+    EXPECT_NEAR(ekf.pose().p.y(), 0.015, 0.03);
+    EXPECT_LT(ekf.covariance()(0, 0), rpe_covariance()(0, 0));
   }
 }

@@ -189,23 +189,13 @@ void UgvNavTask::read_relative_poses(TimePoint now) {
       ++health_.rpe_ignored;
       continue;
     }
-    if (!ekf_.initialized() && config_.init_needs_agreement) {
-      if (!agrees_with_init_candidate(z.value())) {
-        if (init_candidate_) ++health_.rpe_init_disagreed;
-        init_candidate_ = z.value();
-        continue;
-      }
-      (void)ekf_.update(*init_candidate_);  // starts it; the second is fused next
-      init_candidate_.reset();
-      replan_requested_ = true;
-    }
     switch (ekf_.update(z.value())) {
       case UgvEkf::Update::kInitialized:
       case UgvEkf::Update::kReset:
         replan_requested_ = true;
         break;
       case UgvEkf::Update::kApplied:
-      case UgvEkf::Update::kHeld:  // after a gap: the next confirms it
+      case UgvEkf::Update::kHeld:  // at the start or after a gap: the next confirms it
         break;
       case UgvEkf::Update::kRejectedGate:
         ++health_.rpe_outliers;
@@ -225,17 +215,6 @@ bool UgvNavTask::no_uav_in_control() const {
     heard = heard || u.heard;
   }
   return heard;
-}
-
-bool UgvNavTask::agrees_with_init_candidate(const PoseMeasurement& z) const {
-  if (!init_candidate_) return false;
-  const PoseMeasurement& c = *init_candidate_;
-  const Duration apart = z.stamp > c.stamp ? z.stamp - c.stamp : c.stamp - z.stamp;
-  if (apart > config_.init_agreement_window) return false;
-  Vec3 d(z.pose.p.x() - c.pose.p.x(), z.pose.p.y() - c.pose.p.y(),
-         wrap_angle(z.pose.yaw_rad - c.pose.yaw_rad));
-  const double d2 = d.dot((z.covariance + c.covariance).ldlt().solve(d));
-  return d2 <= ekf_.config().gate_chi2;
 }
 
 void UgvNavTask::command(TimePoint now, double v, double omega) {

@@ -72,13 +72,6 @@ struct UgvNavConfig {
   Duration odometry_timeout = std::chrono::milliseconds(60);
   Duration odometry_startup_grace = std::chrono::seconds(1);
   Duration rpe_match_tolerance = std::chrono::milliseconds(100);
-  // The estimator starts from two relative poses that agree (within its gate of each other, this
-  // close in time; the UGV stands until then), not from the first alone: nothing checks the
-  // first, and a start 0.8 m off with sigma 0.2 m (4 sigma) kept a UGV's NEES at 18 for 100 s.
-  // Two catch an outlier many sigma out (near detections report centimetres); one within a far
-  // detection's wide covariance still passes, and is left to the gate and the reset.
-  bool init_needs_agreement = true;
-  Duration init_agreement_window = std::chrono::seconds(2);
   Duration max_message_age = std::chrono::seconds(2);         // older RPE / patches are ignored
   Duration max_future_skew = std::chrono::milliseconds(200);  // newer than now + this: rejected
   // Another UGV not heard from is not forgotten: it stays an obstacle whose disc grows at this

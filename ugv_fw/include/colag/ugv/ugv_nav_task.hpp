@@ -26,12 +26,11 @@ namespace colag::ugv {
 struct UgvHealth {
   std::uint64_t odometry_rejected = 0;
   std::uint64_t uav_odometry_rejected = 0;
-  std::uint64_t rpe_rejected = 0;        // malformed, wrong robot, too old / from the future
-  std::uint64_t rpe_unmatched = 0;       // no UAV odometry within the tolerance of its stamp
-  std::uint64_t rpe_outliers = 0;        // outside the EKF gate
-  std::uint64_t rpe_init_disagreed = 0;  // before initialisation: unlike the one before it
-  std::uint64_t rpe_ignored = 0;         // ablation no-rpe: used only to initialise
-  std::uint64_t unsynchronised = 0;      // UAV odometry / relative poses refused: no fleet time yet
+  std::uint64_t rpe_rejected = 0;    // malformed, wrong robot, too old / from the future
+  std::uint64_t rpe_unmatched = 0;   // no UAV odometry within the tolerance of its stamp
+  std::uint64_t rpe_outliers = 0;    // outside the EKF gate
+  std::uint64_t rpe_ignored = 0;     // ablation no-rpe: used only to initialise
+  std::uint64_t unsynchronised = 0;  // UAV odometry / relative poses refused: no fleet time yet
   std::uint64_t patches_rejected = 0;
   std::uint64_t statuses_rejected = 0;
   std::uint64_t drive_errors = 0;
@@ -198,8 +197,6 @@ class UgvNavTask {
   void track_uncertainty();       // recent_3sigma_m_, each planning step
   double three_sigma_m() const;   // the position's 3-sigma ellipse's semi-major axis
   bool sure_of_position() const;  // 3 sigma within arrival_max_uncertainty_m: may arrive
-  // Two relative poses before initialisation agree (see UgvNavConfig::init_needs_agreement).
-  bool agrees_with_init_candidate(const PoseMeasurement& z) const;
   void command(TimePoint now, double v, double omega);
 
   UgvNavConfig config_;
@@ -220,7 +217,6 @@ class UgvNavTask {
 
   FleetClock fleet_;
   UgvEkf ekf_;
-  std::optional<PoseMeasurement> init_candidate_;  // the first of two to start the estimator
   // Each UAV of the fleet (by its id): its odometry, to place the relative poses it measures;
   // and whether its flight controller flies the mission, as its last sample said.
   struct Uav {
