@@ -175,8 +175,9 @@ int run(int argc, char** argv) {
   std::string clock_step;
   auto* clocks = app.add_option_group("clocks", "each robot's own clock");
   clocks
-      ->add_option("--clock-offset-s", cfg.clocks.offset_s,
-                   "each UGV's clock reads up to this many seconds more or less than the UAV's")
+      ->add_option(
+          "--clock-offset-s", cfg.clocks.offset_s,
+          "each UGV's (and UAV 1+'s) clock reads up to this many seconds more or less than UAV 0's")
       ->check(CLI::Range(0.0, 1e6));
   clocks
       ->add_option("--clock-drift-ppm", cfg.clocks.drift_ppm,

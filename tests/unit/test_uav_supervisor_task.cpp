@@ -710,3 +710,74 @@ TEST(UavSupervisorTask, TwoUavsStepsAllocateNothingInSteadyState) {
   }
   EXPECT_GT(f.uav[0]->health().fleet_schedules, before + 10);
 }
+
+namespace {
+
+// The time server (UAV 0), its clock an hour ahead of the UAV under test's.
+class TimeServer final : public platform::Task {
+ public:
+  explicit TimeServer(platform::Transport& bus) : bus_(bus) {}
+  const char* name() const override { return "time_server"; }
+  Status init(TimePoint) override { return server_.attach(bus_, 0); }
+  void step(TimePoint now) override {
+    if (on) server_.step(now + kAhead);
+  }
+  static constexpr Duration kAhead = std::chrono::hours(1);
+  bool on = false;
+
+ private:
+  platform::Transport& bus_;
+  ClockServer server_;
+};
+
+}  // namespace
+
+// UAV 1 is not the time server: until it has heard UAV 0's clock it sends nothing stamped (its
+// own clock is not fleet time) and reads nothing stamped; then every stamp it sends is fleet time,
+// and what the UGVs stamp in fleet time is understood.
+TEST(UavSupervisorTask, AUavThatIsNotTheTimeServerSpeaksFleetTime) {
+  UavSupervisorConfig config;
+  config.id = 1;
+  Rig rig(nullptr, config);
+  TimeServer server(*rig.bus);
+  ASSERT_TRUE(rig.ex.add({&server, 20ms, 2ms}));
+  ASSERT_TRUE(rig.ex.init());
+  rig.sky->ugvs = {Vec2(1.0, 0.0)};  // in view
+  rig.ex.run_until(rig.ex.now() + 1s);
+  EXPECT_TRUE(rig.rpes.got.empty());
+  EXPECT_TRUE(rig.patches.got.empty());
+  EXPECT_GT(rig.uav->health().unsynchronised, 0u);
+  EXPECT_FALSE(rig.uav->fleet_clock().has_estimate());
+
+  server.on = true;
+  rig.ex.run_until(rig.ex.now() + 500ms);
+  ASSERT_TRUE(rig.uav->fleet_clock().has_estimate());
+  const auto fleet_now = [&] { return rig.ex.now() + TimeServer::kAhead; };
+  // A UGV's status and request, stamped in fleet time.
+  msg::UgvStatus st;
+  st.stamp = fleet_now();
+  st.position_m[0] = 1.0;
+  st.yaw_rad = -M_PI / 2;
+  ASSERT_TRUE(rig.bus->publish(st));
+  msg::CollisionInfo ci;
+  ci.stamp = fleet_now();
+  ci.ugv_id = 0;
+  ci.seq = 1;
+  ci.support_point_m[0] = 3.0;
+  ci.collision_point_m[0] = 3.0;
+  ci.time_to_collision_s = 5.0;
+  ASSERT_TRUE(rig.bus->publish(ci));
+  const TimePoint asked = fleet_now();
+  rig.ex.run_until(rig.ex.now() + 1s);
+  // Sent in this second of fleet time (to the conversion's few milliseconds), not an hour off.
+  const auto in_this_second = [&](TimePoint stamp) {
+    return stamp >= asked - 10ms && stamp <= fleet_now() + 10ms;
+  };
+  ASSERT_FALSE(rig.rpes.got.empty());
+  EXPECT_TRUE(in_this_second(rig.rpes.got.back().stamp));
+  ASSERT_FALSE(rig.plans.got.empty());
+  EXPECT_TRUE(in_this_second(rig.plans.got.back().stamp));
+  ASSERT_EQ(rig.plans.got.back().stops.count, 1u);  // the request was understood
+  EXPECT_EQ(rig.plans.got.back().stops[0].ugv_id, 0);
+  EXPECT_EQ(rig.uav->health().stamps.from_future + rig.uav->health().stamps.too_old, 0u);
+}

@@ -456,7 +456,7 @@ TEST(UgvNavTask, WithTwoUavsEachRelativePoseIsPlacedByItsOwnUavsOdometry) {
   EXPECT_LE(rig.ugv->health().rpe_outliers, 2u);
   EXPECT_EQ(rig.ugv->health().rpe_unmatched, 0u);
   // Fleet time is UAV 0's clock; UAV 1's replies (5 s ahead) were not mixed in.
-  const FleetClock& clock = rig.ugv->fleet_clock();
+  const platform::UgvFleetClock& clock = rig.ugv->fleet_clock();
   EXPECT_GT(clock.replies_rejected(), 10u);
   EXPECT_LT(std::abs(to_seconds(clock.to_local(rig.ex.now()) - rig.ex.now())), 0.01);
 }

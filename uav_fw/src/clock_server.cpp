@@ -5,20 +5,40 @@ namespace colag::uav {
 Status ClockServer::attach(platform::Transport& transport, RobotId uav_id) {
   transport_ = &transport;
   uav_id_ = uav_id;
-  return requests_.attach(transport);
+  if (Status s = requests_.attach(transport); !s) return s;
+  return uav_requests_.attach(transport);
 }
+
+namespace {
+
+// The exchange's stamps and sequence number, for either kind of asker.
+template <class Reply, class Request>
+Reply answer(const Request& q, TimePoint now) {
+  Reply r;
+  r.received = now;
+  r.seq = q.seq;
+  r.request_stamp = q.stamp;
+  r.stamp = now;
+  return r;
+}
+
+}  // namespace
 
 void ClockServer::step(TimePoint now) {
   if (transport_ == nullptr) return;
   msg::ClockRequest q;
   while (requests_.pop(q)) {
-    msg::ClockReply r;
-    r.received = now;
+    auto r = answer<msg::ClockReply>(q, now);
     r.uav_id = uav_id_;
     r.ugv_id = q.ugv_id;
-    r.seq = q.seq;
-    r.request_stamp = q.stamp;
-    r.stamp = now;
+    if (transport_->publish(r)) ++answered_;
+  }
+  msg::UavClockRequest uq;
+  while (uav_requests_.pop(uq)) {
+    if (uq.uav_id == uav_id_) continue;  // our own
+    auto r = answer<msg::UavClockReply>(uq, now);
+    r.server_id = uav_id_;
+    r.uav_id = uq.uav_id;
     if (transport_->publish(r)) ++answered_;
   }
 }

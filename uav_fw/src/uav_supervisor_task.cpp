@@ -43,6 +43,12 @@ double edge_orbit_radius_of(const UavSupervisorConfig& c) {
                            c.edge_beyond_blind_m, c.orbit_radius_m);
 }
 
+platform::FleetClockConfig fleet_clock_config(const UavSupervisorConfig& c) {
+  platform::FleetClockConfig f = c.fleet_clock;
+  f.time_server = c.time_server;
+  return f;
+}
+
 UavSupervisorConfig with_camera_altitude(UavSupervisorConfig c) {
   const double lowest_beam = blind_cone_elevation_deg(c.lidar_pattern, c.lidar_mount.q);
   const double highest =
@@ -72,6 +78,7 @@ UavSupervisorTask::UavSupervisorTask(const UavSupervisorConfig& config,
                     &UavSupervisorTask::sharing_step),
       scheduling_loop_(*this, "uav_scheduling", &UavSupervisorTask::init,
                        &UavSupervisorTask::scheduling_step),
+      fleet_time_(fleet_clock_config(config_)),
       mapper_(mapper_config(config_), fork_join),
       no_returns_(config.lidar_pattern),
       team_filter_(config.team),
@@ -95,8 +102,10 @@ Status UavSupervisorTask::init(TimePoint now) {
   if (Status s = statuses_in_.attach(transport_); !s) return s;
   if (Status s = peer_odometry_in_.attach(transport_); !s) return s;
   if (Status s = peer_plans_in_.attach(transport_); !s) return s;
-  if (config_.id == config_.time_server) {
+  if (time_server()) {
     if (Status s = clock_server_.attach(transport_, config_.id); !s) return s;
+  } else if (Status s = fleet_time_.attach(transport_, config_.id); !s) {
+    return s;
   }
   last_control_ = now;
   initialised_ = true;
@@ -110,6 +119,8 @@ void UavSupervisorTask::control_step(TimePoint now) {
   const double dt = std::clamp(to_seconds(now - last_control_), 1e-3, 0.1);
   last_control_ = now;
   clock_server_.step(now);
+  fleet_time_.step(now);
+  const bool stamping = knows_fleet_time();  // else nothing stamped goes out yet
   const hal::FlightStatus flight = flight_out_.update(now);
   if (flight.state == msg::UavFlight::kLost && flight_status_.state != msg::UavFlight::kLost)
     ++health_.flight_lost;
@@ -126,7 +137,7 @@ void UavSupervisorTask::control_step(TimePoint now) {
     state_ = s;
     have_state_ = true;
     fresh = true;
-    od.stamp = s.stamp;
+    od.stamp = to_fleet(s.stamp);
     od.uav_id = config_.id;
     for (int i = 0; i < 3; ++i) {
       od.position_m[i] = s.pose.p[i];
@@ -142,7 +153,8 @@ void UavSupervisorTask::control_step(TimePoint now) {
     od.fault = flight.fault;
   }
   // The newest sample, at odometry_period on average (the control ticks need not divide it).
-  if (fresh && (odometry_due_ == kNever || now >= odometry_due_)) {
+  if (fresh && !stamping) ++health_.unsynchronised;
+  if (fresh && stamping && (odometry_due_ == kNever || now >= odometry_due_)) {
     const Duration period = config_.odometry_period;
     odometry_due_ = odometry_due_ == kNever || now - odometry_due_ >= period
                         ? now + period
@@ -166,11 +178,16 @@ void UavSupervisorTask::control_step(TimePoint now) {
   std::array<hal::RelativePoseDetection, limits::kMaxRpeDetectionsPerFrame> detections;
   const std::size_t n = camera_.poll(detections);
   for (std::size_t i = 0; i < n; ++i) {
-    const Result<msg::RelativePose> m = to_message(detections[i], config_.id);
+    Result<msg::RelativePose> m = to_message(detections[i], config_.id);
     if (!m || !StampGate::passed(camera_stamps_.check(detections[i].stamp, now))) {
       ++health_.rpe_rejected;
       continue;
     }
+    if (!stamping) {
+      ++health_.unsynchronised;
+      continue;
+    }
+    m.value().stamp = to_fleet(m.value().stamp);
     if (transport_.publish(m.value())) ++health_.rpe_published;
     ugvs_[detections[i].ugv_id].last_seen = detections[i].stamp;
   }
@@ -271,6 +288,7 @@ void UavSupervisorTask::refresh_flight_layer() {
 // -------------------------------------------------------------------------
 
 void UavSupervisorTask::sharing_step(TimePoint now) {
+  if (!knows_fleet_time()) return;
   msg::MapPatch patch;
   for (RobotId id = 0; id < limits::kMaxUgvs; ++id) {
     const Ugv& u = ugvs_[id];
@@ -278,7 +296,7 @@ void UavSupervisorTask::sharing_step(TimePoint now) {
     const Vec2 p(u.status.position_m[0], u.status.position_m[1]);
     if (!sharer_.make_patch(mapper_, p, u.status.yaw_rad, u.status.velocity_mps, patch)) continue;
     if (!sharer_.should_send(id, now, patch)) continue;
-    patch.stamp = now;
+    patch.stamp = to_fleet(now);
     patch.uav_id = config_.id;
     patch.ugv_id = id;
     patch.seq = ++patch_seq_;
@@ -300,6 +318,11 @@ void UavSupervisorTask::read_requests(TimePoint now) {
       ++health_.requests_rejected;
       continue;
     }
+    if (!knows_fleet_time()) {
+      ++health_.unsynchronised;
+      continue;
+    }
+    ci.stamp = to_local(ci.stamp);
     const StampGate::Verdict v = request_stamps_[ci.ugv_id].check(ci.stamp, now);
     if (v == StampGate::Verdict::kNotIncreasing) continue;  // old or duplicate: dropped
     if (!StampGate::passed(v)) {
@@ -353,7 +376,12 @@ void UavSupervisorTask::read_statuses(TimePoint now) {
       ++health_.statuses_rejected;
       continue;
     }
-    const StampGate::Verdict v = status_stamps_[s.ugv_id].check(s.stamp, now);
+    if (!knows_fleet_time()) {
+      ++health_.unsynchronised;
+      continue;
+    }
+    // Checked on our clock; kept in fleet time (relayed as it came in the nearby lists).
+    const StampGate::Verdict v = status_stamps_[s.ugv_id].check(to_local(s.stamp), now);
     if (v == StampGate::Verdict::kNotIncreasing) continue;  // duplicate or overtaken: dropped
     if (!StampGate::passed(v)) {
       ++health_.statuses_rejected;
@@ -619,9 +647,10 @@ bool UavSupervisorTask::choose_scout_point(TimePoint now, Vec2& target) {
 }
 
 void UavSupervisorTask::publish_plan(TimePoint now, bool changed) {
+  if (!knows_fleet_time()) return;
   if (!changed && !elapsed(now, plan_published_, config_.plan_publish_period)) return;
   plan_ = msg::SupportPlan{};
-  plan_.stamp = now;
+  plan_.stamp = to_fleet(now);
   plan_.uav_id = config_.id;
   plan_.seq = static_cast<std::uint32_t>(health_.schedules);
   plan_.total_lateness_s = schedule_.cost.lateness_s;
@@ -644,7 +673,10 @@ void UavSupervisorTask::relay_nearby(TimePoint now) {
   health_.nearby_sent += static_cast<std::uint64_t>(uav::relay_nearby(
       ugvs_, now, config_.status_timeout, config_.nearby, nearby_passes_++, nearby_,
       [&](RobotId id) { return relays_to(now, id); },
-      [&](const msg::NearbyUgvs& m) { return static_cast<bool>(transport_.publish(m)); }));
+      [&](msg::NearbyUgvs& m) {
+        m.stamp = to_fleet(m.stamp);
+        return static_cast<bool>(transport_.publish(m));
+      }));
 }
 
 bool UavSupervisorTask::relays_to(TimePoint now, RobotId id) const {
@@ -664,7 +696,7 @@ void UavSupervisorTask::scheduling_step(TimePoint now) {
   read_statuses(now);
   place_stops();
   read_peers(now);
-  relay_nearby(now);
+  if (knows_fleet_time()) relay_nearby(now);
   StampCounters stamps = odometry_stamps_.counters();
   stamps += camera_stamps_.counters();
   for (std::size_t i = 0; i < limits::kMaxUgvs; ++i) {

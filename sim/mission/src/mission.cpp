@@ -180,14 +180,15 @@ class OnRobotClock final : public platform::Task {
   sim::ClockModel clock_;
 };
 
-// Each robot's clock: the UAV's first, then one per UGV (see ClockConfig).
+// Each robot's clock: UAV 0's (fleet time) first, then one per UGV, then UAV 1's, 2's, ... (see
+// ClockConfig; drawn in that order, so that adding UAVs leaves the UGVs' clocks as they were).
 std::vector<sim::ClockModel> draw_clocks(const MissionConfig& cfg) {
   ClockConfig c = cfg.clocks;
   if (!c.any()) {  // the world's
     c.offset_s = cfg.world.clocks.offset_s;
     c.drift_ppm = cfg.world.clocks.drift_ppm;
   }
-  std::vector<sim::ClockModel> out(static_cast<std::size_t>(cfg.ugvs) + 1);
+  std::vector<sim::ClockModel> out(static_cast<std::size_t>(cfg.ugvs + std::max(cfg.uavs, 1)));
   if (!c.any()) return out;
   Rng rng(cfg.seed * 0x9E3779B97F4A7C15ULL + 0xC10C);  // its own stream: the rest is unchanged
   for (std::size_t i = 0; i < out.size(); ++i) {
@@ -198,6 +199,11 @@ std::vector<sim::ClockModel> draw_clocks(const MissionConfig& cfg) {
   out[0].step_at_s = c.step_at_s;
   out[0].step_s = c.step_s;
   return out;
+}
+
+// UAV k's clock in draw_clocks()'s list.
+std::size_t uav_clock(const MissionConfig& cfg, int k) {
+  return k == 0 ? 0 : static_cast<std::size_t>(cfg.ugvs + k);
 }
 
 constexpr double kAirborne_m = 0.5;  // a UAV this high has taken off (separation counts)
@@ -450,7 +456,7 @@ std::unique_ptr<Mission> Mission::compose(const MissionConfig& cfg, std::string&
   // The UAVs (not in the self-perception baseline).
   if (!cfg.self_perception) {
     for (int k = 0; k < cfg.uavs; ++k) {
-      p->world->add_uav(uav_start_of(cfg, k), p->clocks[0]);
+      p->world->add_uav(uav_start_of(cfg, k), p->clocks[uav_clock(cfg, k)]);
       uav::UavSupervisorConfig uc;
       uc.id = static_cast<RobotId>(k);
       if (cfg.ablation == Ablation::kNoScheduling)
@@ -542,7 +548,7 @@ std::unique_ptr<Mission> Mission::compose(const MissionConfig& cfg, std::string&
         e.task = p->mortals.back().get();
       }
     }
-    st = add_rows(rows, p->clocks[0]);
+    st = add_rows(rows, p->clocks[uav_clock(cfg, static_cast<int>(k))]);
   }
   if (p->reference && st) st = p->ex->add(on_clock({p->reference.get(), 20ms, 1ms}, p->clocks[0]));
   for (int i = 0; i < cfg.ugvs && st; ++i) {

@@ -67,8 +67,9 @@ bool UavBoard::start(std::string& error) {
   dds_cfg.partition = cfg.common.dds_partition.c_str();
   dds_cfg.security = cfg.common.dds_security;
   // What the UAV sends (a peer that is not the UAV announces none of it).
-  dds_cfg.publish_only<msg::UavOdometry, msg::RelativePose, msg::MapPatch, msg::SupportPlan,
-                       msg::ClockReply, msg::NearbyUgvs>();
+  dds_cfg
+      .publish_only<msg::UavOdometry, msg::RelativePose, msg::MapPatch, msg::SupportPlan,
+                    msg::ClockReply, msg::NearbyUgvs, msg::UavClockRequest, msg::UavClockReply>();
   if (const Status s = dds_.init(dds_cfg); !s) {
     std::snprintf(text, sizeof text, "DDS: %s (%s)", s.message(),
                   dds_strretcode(dds_.last_error()));

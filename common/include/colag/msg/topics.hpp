@@ -23,8 +23,9 @@
 namespace colag::msg {
 
 // Every message that crosses between robots, in topic order.
-using Messages = std::tuple<UavOdometry, RelativePose, MapPatch, CollisionInfo, UgvStatus,
-                            SupportPlan, ClockRequest, ClockReply, NearbyUgvs>;
+using Messages =
+    std::tuple<UavOdometry, RelativePose, MapPatch, CollisionInfo, UgvStatus, SupportPlan,
+               ClockRequest, ClockReply, NearbyUgvs, UavClockRequest, UavClockReply>;
 
 inline constexpr std::size_t kTopicCount = std::tuple_size_v<Messages>;
 

@@ -1,8 +1,8 @@
 #pragma once
-// The UAV's side of fleet time (see msg/clock_sync.hpp): every clock request is answered at once
-// with the UAV's receive and send times. Runs in the control loop (50 Hz), so a request waits at
-// most one control period; the UGVs' filters use the exchanges with the shortest round trips.
-// Allocation-free.
+// The UAV's side of fleet time (see msg/clock_sync.hpp): every clock request, a UGV's or another
+// UAV's, is answered at once with this UAV's receive and send times. Runs in the control loop
+// (50 Hz), so a request waits at most one control period; the askers' filters use the exchanges
+// with the shortest round trips, from the time server only. Allocation-free.
 #include <cstdint>
 
 #include "colag/msg/clock_sync.hpp"
@@ -20,6 +20,7 @@ class ClockServer {
   platform::Transport* transport_ = nullptr;
   RobotId uav_id_ = 0;
   platform::QueueReader<msg::ClockRequest, limits::kMaxUgvs> requests_;
+  platform::QueueReader<msg::UavClockRequest, limits::kMaxUavs> uav_requests_;
   std::uint64_t answered_ = 0;
 };
 

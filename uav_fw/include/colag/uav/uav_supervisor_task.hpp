@@ -20,6 +20,7 @@
 #include "colag/hal/odometry_source.hpp"
 #include "colag/hal/relative_pose_sensor.hpp"
 #include "colag/msg/support_plan.hpp"
+#include "colag/platform/fleet_clock.hpp"
 #include "colag/platform/readers.hpp"
 #include "colag/uav/camera_altitude.hpp"
 #include "colag/uav/clock_server.hpp"
@@ -57,7 +58,12 @@ struct UavSupervisorConfig {
   // A peer fallen silent flies on until its flight controller's own failsafe (PX4: offboard
   // loss after COM_OF_LOSS_T, 1 s by default), then brakes: it is kept clear of along that line.
   Duration peer_failsafe = std::chrono::seconds(1);
-  RobotId time_server = 0;  // the UAV whose clock is fleet time: only it answers clock requests
+  // The UAV whose clock is fleet time: only it answers clock requests. Every other UAV learns
+  // fleet time from it as a UGV does (platform/fleet_clock.hpp) and converts at its edges; until
+  // its first exchange it publishes nothing stamped and reads nothing stamped (time_server is
+  // taken from here: fleet_clock.time_server is set to it).
+  RobotId time_server = 0;
+  platform::FleetClockConfig fleet_clock;
   // The paper's fallback when no order meets every deadline: plan as if v_max were 1.5x, 2.25x,
   // ... higher until one does (up to 100 times). Off: minimise total lateness instead.
   bool vmax_escalation = false;
@@ -150,8 +156,10 @@ struct UavHealth {
   std::array<std::uint64_t, static_cast<std::size_t>(UavMode::kScout) + 1> mode_steps{};
   std::uint64_t scout_timeouts = 0;  // scouting points left unmapped (scout_timeout)
   std::uint64_t flight_lost = 0;     // times the flight controller left the mission
-  std::uint64_t window_moves = 0;    // the maps' window moved with the UAV
-  StampCounters stamps;              // every input stream's stamp checks, summed (scheduling loop)
+  // Stamped messages not sent, or not read, before this UAV knew fleet time (not the server).
+  std::uint64_t unsynchronised = 0;
+  std::uint64_t window_moves = 0;  // the maps' window moved with the UAV
+  StampCounters stamps;            // every input stream's stamp checks, summed (scheduling loop)
 };
 
 class UavSupervisorTask {
@@ -189,6 +197,8 @@ class UavSupervisorTask {
   // The flight controller's last word (UavFlight::kLost: the supervisor no longer commands it).
   const hal::FlightStatus& flight_status() const { return flight_status_; }
   const ClockServer& clock_server() const { return clock_server_; }
+  // Fleet time on a UAV that is not the time server (unused on the server).
+  const platform::UavFleetClock& fleet_clock() const { return fleet_time_; }
   const UavSupervisorConfig& config() const { return config_; }
   // How far from a UGV against its own edge the UAV circles it (edge_orbit.hpp); NaN: it does
   // not, no circle sees both its ground and its tag.
@@ -261,6 +271,12 @@ class UavSupervisorTask {
   std::array<StampGate, limits::kMaxUgvs> request_stamps_{}, status_stamps_{};
 
   ClockServer clock_server_;
+  platform::UavFleetClock fleet_time_;
+  // Fleet time <-> this UAV's clock (the identity on the time server).
+  bool time_server() const { return config_.id == config_.time_server; }
+  bool knows_fleet_time() const { return time_server() || fleet_time_.has_estimate(); }
+  TimePoint to_fleet(TimePoint t) const { return time_server() ? t : fleet_time_.to_fleet(t); }
+  TimePoint to_local(TimePoint t) const { return time_server() ? t : fleet_time_.to_local(t); }
   hal::FlightStatus flight_status_;
   msg::UavOdometry last_odometry_;  // the last sample sent, repeated for the flight state
   TimePoint odometry_sent_ = kNever;

@@ -8,10 +8,10 @@
 #include "colag/common/time.hpp"
 #include "colag/common/ugv_ekf.hpp"
 #include "colag/msg/robot_id.hpp"
+#include "colag/platform/fleet_clock.hpp"
 #include "colag/ugv/blocked_watch.hpp"
 #include "colag/ugv/collision_predictor.hpp"
 #include "colag/ugv/controller.hpp"
-#include "colag/ugv/fleet_clock.hpp"
 #include "colag/ugv/support_protocol.hpp"
 #include "colag/ugv/trajectory.hpp"
 #include "colag/ugv/ugv_schedule.hpp"
@@ -51,7 +51,7 @@ struct UgvNavConfig {
   PredictorConfig predictor;
   SupportConfig support;
   BlockedConfig blocked;
-  FleetClockConfig fleet_clock;
+  platform::FleetClockConfig fleet_clock;
 
   double stop_time_s = 0.4;        // t_c: stop when a collision is predicted sooner
   double resume_margin_s = 0.2;    // hysteresis before driving on

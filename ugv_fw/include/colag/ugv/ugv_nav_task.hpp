@@ -14,9 +14,9 @@
 #include "colag/common/stamp_gate.hpp"
 #include "colag/hal/drive.hpp"
 #include "colag/hal/wheel_odometry.hpp"
+#include "colag/platform/fleet_clock.hpp"
 #include "colag/platform/readers.hpp"
 #include "colag/ugv/blocked_watch.hpp"
-#include "colag/ugv/fleet_clock.hpp"
 #include "colag/ugv/rpe_measurement.hpp"
 #include "colag/ugv/ugv_nav_config.hpp"
 #include "colag/ugv/waiting.hpp"
@@ -131,7 +131,7 @@ class UgvNavTask {
   const UgvHealth& health() const { return health_; }
   // Why the UGV is in kFault (kNone when it is not).
   const hal::DriveHealth& base_fault() const { return base_fault_; }
-  const FleetClock& fleet_clock() const { return fleet_; }
+  const platform::UgvFleetClock& fleet_clock() const { return fleet_; }
   TimePoint now() const { return last_control_; }  // its clock, at its last control step
   double waiting_time_s() const {                  // stood still before arrival: the parts' sum
     Duration sum{};
@@ -215,7 +215,7 @@ class UgvNavTask {
   // Each input stream's stamp checks.
   StampGate wheel_stamps_, rpe_stamps_, patch_stamps_, nearby_stamps_;
 
-  FleetClock fleet_;
+  platform::UgvFleetClock fleet_;
   UgvEkf ekf_;
   // Each UAV of the fleet (by its id): its odometry, to place the relative poses it measures;
   // and whether its flight controller flies the mission, as its last sample said.

@@ -49,9 +49,10 @@ struct FaultConfig {
   }
 };
 
-// Every robot has its own clock (as boards do). The UAV's is fleet time; each UGV's reads
-// offset_s + U(-offset_s, offset_s) more than the UAV's at the start (so none reads negative), and
-// each robot's crystal runs U(-drift_ppm, drift_ppm) fast. Optionally the UAV's clock steps once.
+// Every robot has its own clock (as boards do). UAV 0's is fleet time; each other robot's (every
+// UGV's, UAV 1's, ...) reads offset_s + U(-offset_s, offset_s) more than UAV 0's at the start (so
+// none reads negative), and each robot's crystal runs U(-drift_ppm, drift_ppm) fast. Optionally
+// UAV 0's clock steps once.
 struct ClockConfig {
   double offset_s = 0.0;
   double drift_ppm = 0.0;

@@ -43,8 +43,8 @@ struct UgvOutcome {
   std::array<double, kCalibrationDim> calibration{};
   std::array<double, kCalibrationDim> calibration_sigma{};
   std::array<double, kCalibrationDim> calibration_true{};
-  // Fleet time (see ugv/fleet_clock.hpp): the UAV clock's steps it followed, and the error bound
-  // it reported at the end (< 0: not synchronised).
+  // Fleet time (see platform/fleet_clock.hpp): the UAV clock's steps it followed, and the error
+  // bound it reported at the end (< 0: not synchronised).
   std::uint64_t clock_steps = 0;
   double clock_error_s = -1.0;
   double traj_length_m = 0.0;
