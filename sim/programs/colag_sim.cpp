@@ -168,9 +168,13 @@ int run(int argc, char** argv) {
       ->check(sim::positive_up_to(1e6));
   faults
       ->add_option("--uav-lost-at", cfg.faults.uav_lost_at_s,
-                   "the last UAV's board dies at this time, s: it stops and falls silent (with "
-                   "--uavs 2+ the others take its UGVs over)")
+                   "a UAV's board (the last's, or --uav-lost-id's) dies at this time, s: it "
+                   "stops and falls silent (with --uavs 2+ the others take its UGVs over)")
       ->check(sim::positive_up_to(1e6));
+  faults
+      ->add_option("--uav-lost-id", cfg.faults.uav_lost_id,
+                   "which UAV --uav-lost-at loses (default: the last; 0 is the time server)")
+      ->check(CLI::Range(0, static_cast<int>(limits::kMaxUavs) - 1));
   // Clocks: every robot keeps its own (fleet time is the UAV's; the UGVs learn it over DDS).
   std::string clock_step;
   auto* clocks = app.add_option_group("clocks", "each robot's own clock");

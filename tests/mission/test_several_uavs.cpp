@@ -12,7 +12,10 @@
 using namespace colag;
 using namespace colag::mission;
 
-TEST(SeveralUavs, OneOfTwoDiesMidMissionAndEveryUgvStillReachesSafely) {
+namespace {
+
+// Dense, 5 UGVs, two UAVs, seed 3, field world: one UAV is lost at 20 s.
+MissionConfig one_of_two_lost() {
   MissionConfig cfg;
   cfg.scenario = "dense";
   cfg.ugvs = 5;
@@ -21,18 +24,34 @@ TEST(SeveralUavs, OneOfTwoDiesMidMissionAndEveryUgvStillReachesSafely) {
   cfg.max_time_s = 250;
   cfg.faults.uav_lost_at_s = 20.0;
   std::string error;
-  ASSERT_TRUE(world_from_name("field", cfg.world, error)) << error;
-  const std::unique_ptr<Mission> m = Mission::compose(cfg, error);
-  ASSERT_TRUE(m) << error;
-  ASSERT_EQ(m->uav_count(), 2u);
+  EXPECT_TRUE(world_from_name("field", cfg.world, error)) << error;
+  return cfg;
+}
+
+// Flies it; every UGV must reach without touching anything.
+std::unique_ptr<Mission> fly_safely(const MissionConfig& cfg, MissionOutcome& o) {
+  std::string error;
+  std::unique_ptr<Mission> m = Mission::compose(cfg, error);
+  EXPECT_TRUE(m) << error;
+  if (!m) return m;
   m->fly();
-  const MissionOutcome o = m->collect();
+  o = m->collect();
   EXPECT_TRUE(o.all_reached);
   EXPECT_EQ(o.collisions, 0);
   for (const UgvOutcome& u : o.ugvs) {
     EXPECT_TRUE(u.reached) << "UGV " << u.id;
     EXPECT_GT(u.min_clearance_m, 0.0) << "UGV " << u.id;
   }
+  return m;
+}
+
+}  // namespace
+
+TEST(SeveralUavs, OneOfTwoDiesMidMissionAndEveryUgvStillReachesSafely) {
+  MissionOutcome o;
+  const std::unique_ptr<Mission> m = fly_safely(one_of_two_lost(), o);
+  ASSERT_TRUE(m);
+  ASSERT_EQ(m->uav_count(), 2u);
   // Both served before the loss; UAV 0 saw its peer go and scheduled alone after.
   EXPECT_GT(m->uav(1)->health().fleet_schedules, 0u);
   EXPECT_EQ(m->uav(0)->health().peers_lost, 1u);
@@ -41,6 +60,26 @@ TEST(SeveralUavs, OneOfTwoDiesMidMissionAndEveryUgvStillReachesSafely) {
   // The live UAV kept clear of the dead one's stopping line (1.5 m asked; 0.97 m without the
   // separation filter in this mission).
   EXPECT_GT(o.uav_min_separation_m, 1.2);
+}
+
+// UAV 0 is the time server, and every robot's clock is an hour off and drifts: when it dies the
+// other UAV and the UGVs fly on with the fleet time they have learnt (its bound grows by the
+// crystals' drift margin, milliseconds a minute), and UAV 1 takes every UGV over.
+TEST(SeveralUavs, TheTimeServerDiesAndTheOthersKeepFleetTime) {
+  MissionConfig cfg = one_of_two_lost();
+  cfg.faults.uav_lost_id = 0;
+  cfg.clocks.offset_s = 3600.0;
+  cfg.clocks.drift_ppm = 50.0;
+  MissionOutcome o;
+  const std::unique_ptr<Mission> m = fly_safely(cfg, o);
+  ASSERT_TRUE(m);
+  for (const UgvOutcome& u : o.ugvs) {
+    EXPECT_GE(u.clock_error_s, 0.0) << "UGV " << u.id;  // still synchronised at the end
+    EXPECT_LT(u.clock_error_s, 0.1) << "UGV " << u.id;
+  }
+  EXPECT_EQ(m->uav(1)->health().peers_lost, 1u);
+  EXPECT_TRUE(m->uav(1)->fleet_clock().has_estimate());
+  EXPECT_GT(o.sim_time_s, 40.0);
 }
 
 TEST(SeveralUavs, TheLargestFleetsAreBuiltAndFly) {
@@ -84,4 +123,11 @@ TEST(SeveralUavs, BadCountsAreRefused) {
   cfg.uavs = 2;
   cfg.self_perception = true;
   EXPECT_FALSE(check(cfg, error));
+  cfg.self_perception = false;
+  cfg.faults.uav_lost_at_s = 10.0;
+  cfg.faults.uav_lost_id = 2;  // there are two: 0 and 1
+  EXPECT_FALSE(check(cfg, error));
+  EXPECT_NE(error.find("--uav-lost-id"), std::string::npos) << error;
+  cfg.faults.uav_lost_id = 1;
+  EXPECT_TRUE(check(cfg, error)) << error;
 }

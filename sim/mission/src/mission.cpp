@@ -242,8 +242,8 @@ class Mortal final : public platform::Task {
   const bool& dead_;
 };
 
-// FaultConfig::uav_lost_at_s: the last UAV's board dies (its loops stop, its body and devices
-// fall silent).
+// FaultConfig::uav_lost_at_s: a UAV's board dies (its loops stop, its body and devices fall
+// silent).
 class UavLossWatch final : public platform::Task {
  public:
   UavLossWatch(sim::SimWorld& world, int uav, double at_s)
@@ -536,13 +536,14 @@ std::unique_ptr<Mission> Mission::compose(const MissionConfig& cfg, std::string&
         std::make_unique<BaseFaultWatch>(*p->world, p->ugvs.front(), cfg.faults.base_fault_at_s);
     if (st) st = p->ex->add({p->base_fault.get(), 20ms, 1ms});
   }
+  const int lost = cfg.faults.uav_lost_id >= 0 ? cfg.faults.uav_lost_id : cfg.uavs - 1;
   if (cfg.faults.uav_lost_at_s >= 0.0 && !p->uavs.empty()) {
-    p->uav_loss = std::make_unique<UavLossWatch>(*p->world, cfg.uavs - 1, cfg.faults.uav_lost_at_s);
+    p->uav_loss = std::make_unique<UavLossWatch>(*p->world, lost, cfg.faults.uav_lost_at_s);
     if (st) st = p->ex->add({p->uav_loss.get(), 20ms, 1ms});
   }
   for (std::size_t k = 0; k < p->uavs.size() && st; ++k) {
     auto rows = p->uavs[k]->rows();
-    if (p->uav_loss && k + 1 == p->uavs.size()) {
+    if (p->uav_loss && static_cast<int>(k) == lost) {
       for (platform::TaskEntry& e : rows) {  // the one that will die
         p->mortals.push_back(std::make_unique<Mortal>(*e.task, p->uav_loss->dead));
         e.task = p->mortals.back().get();

@@ -128,6 +128,9 @@ bool check(const MissionConfig& cfg, std::string& error) {
     return fail("--uavs: the self-perception baseline has no UAV");
   if (!std::isfinite(cfg.faults.uav_lost_at_s))
     return fail("--uav-lost-at must be a number of seconds");
+  if (cfg.faults.uav_lost_id >= cfg.uavs)
+    return fail("--uav-lost-id " + std::to_string(cfg.faults.uav_lost_id) + ": there are only " +
+                std::to_string(cfg.uavs) + " UAVs (0.." + std::to_string(cfg.uavs - 1) + ")");
   if (!cfg.placements.empty() && cfg.placements.size() != static_cast<std::size_t>(cfg.ugvs))
     return fail("a start and a goal for each of the " + std::to_string(cfg.ugvs) + " UGVs");
   for (const UgvPlacement& p : cfg.placements)

@@ -123,7 +123,11 @@ std::string to_json(const MissionOutcome& o, bool include_wall_time) {
   nlohmann::ordered_json j;
   j["seed"] = o.config.seed;
   if (o.config.uavs > 1) j["uavs"] = o.config.uavs;  // one UAV: as before (the paper's)
-  if (o.config.faults.uav_lost_at_s >= 0.0) j["uav_lost_at_s"] = o.config.faults.uav_lost_at_s;
+  if (o.config.faults.uav_lost_at_s >= 0.0) {
+    j["uav_lost_at_s"] = o.config.faults.uav_lost_at_s;
+    j["uav_lost_id"] =
+        o.config.faults.uav_lost_id >= 0 ? o.config.faults.uav_lost_id : o.config.uavs - 1;
+  }
   if (o.config.faults.any()) {
     const FaultConfig& f = o.config.faults;
     j["faults"] = {{"loss", f.loss},

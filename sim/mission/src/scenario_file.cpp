@@ -178,8 +178,10 @@ bool load_scenario_file(const std::string& file, MissionConfig& cfg, std::string
   const YAML::Node faults = board::child(root, "faults");
   r.only(faults, "faults",
          {"loss_percent", "latency_ms", "jitter_ms", "blackout", "uav_blackout", "rpe_blackout",
-          "odom_bias_percent", "uav_lost_at_s"});
+          "odom_bias_percent", "uav_lost_at_s", "uav_lost_id"});
   r.get(faults, "faults", "uav_lost_at_s", c.faults.uav_lost_at_s, 0.0, 1e6);
+  r.get(faults, "faults", "uav_lost_id", c.faults.uav_lost_id, 0,
+        static_cast<int>(limits::kMaxUavs) - 1);
   double loss = c.faults.loss * 100.0;
   r.get(faults, "faults", "loss_percent", loss, 0.0, 100.0);
   c.faults.loss = loss / 100.0;

@@ -40,9 +40,11 @@ struct FaultConfig {
   // UGV 0's base reports its own fault at this mission time (< 0: never): an ODrive axis's motor
   // error, an AgileX e-stop, our controller falling silent (what --ugv-base emulates).
   double base_fault_at_s = -1.0;
-  // The last UAV's board dies at this mission time (< 0: never): it stops where it is and falls
-  // silent; the other UAVs take its UGVs over (with several UAVs).
+  // UAV uav_lost_id's board (< 0: the last UAV's) dies at this mission time (< 0: never): it
+  // stops where it is and falls silent; the other UAVs take its UGVs over (with several UAVs).
+  // UAV 0 is the time server: the others and the UGVs fly on with their last fleet time.
   double uav_lost_at_s = -1.0;
+  int uav_lost_id = -1;
   bool any() const {
     return loss > 0.0 || latency_ms > 0.0 || jitter_ms > 0.0 || !blackout.empty() ||
            !uav_blackout.empty() || !rpe_blackout.empty() || odom_bias != 0.0;
