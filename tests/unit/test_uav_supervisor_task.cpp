@@ -713,22 +713,28 @@ TEST(UavSupervisorTask, TwoUavsStepsAllocateNothingInSteadyState) {
 
 namespace {
 
-// The time server (UAV 0), its clock an hour ahead of the UAV under test's.
-class TimeServer final : public platform::Task {
+// A clock exchange's end on its own clock (`ahead` of the test's), stepped while `on`: the time
+// server's (uav::ClockServer) or a UGV's (platform::UgvFleetClock).
+template <class Clock>
+class ClockEnd final : public platform::Task {
  public:
-  explicit TimeServer(platform::Transport& bus) : bus_(bus) {}
-  const char* name() const override { return "time_server"; }
-  Status init(TimePoint) override { return server_.attach(bus_, 0); }
+  ClockEnd(platform::Transport& bus, RobotId id, Duration ahead_of_test)
+      : ahead(ahead_of_test), bus_(bus), id_(id) {}
+  const char* name() const override { return "clock_end"; }
+  Status init(TimePoint) override { return clock.attach(bus_, id_); }
   void step(TimePoint now) override {
-    if (on) server_.step(now + kAhead);
+    if (on) clock.step(now + ahead);
   }
-  static constexpr Duration kAhead = std::chrono::hours(1);
+  const Duration ahead;
   bool on = false;
+  Clock clock;
 
  private:
   platform::Transport& bus_;
-  ClockServer server_;
+  RobotId id_;
 };
+
+constexpr Duration kServerAhead = std::chrono::hours(1);  // UAV 0's clock: fleet time
 
 }  // namespace
 
@@ -739,7 +745,7 @@ TEST(UavSupervisorTask, AUavThatIsNotTheTimeServerSpeaksFleetTime) {
   UavSupervisorConfig config;
   config.id = 1;
   Rig rig(nullptr, config);
-  TimeServer server(*rig.bus);
+  ClockEnd<ClockServer> server(*rig.bus, 0, kServerAhead);
   ASSERT_TRUE(rig.ex.add({&server, 20ms, 2ms}));
   ASSERT_TRUE(rig.ex.init());
   rig.sky->ugvs = {Vec2(1.0, 0.0)};  // in view
@@ -752,7 +758,7 @@ TEST(UavSupervisorTask, AUavThatIsNotTheTimeServerSpeaksFleetTime) {
   server.on = true;
   rig.ex.run_until(rig.ex.now() + 500ms);
   ASSERT_TRUE(rig.uav->fleet_clock().has_estimate());
-  const auto fleet_now = [&] { return rig.ex.now() + TimeServer::kAhead; };
+  const auto fleet_now = [&] { return rig.ex.now() + kServerAhead; };
   // A UGV's status and request, stamped in fleet time.
   msg::UgvStatus st;
   st.stamp = fleet_now();
@@ -780,4 +786,39 @@ TEST(UavSupervisorTask, AUavThatIsNotTheTimeServerSpeaksFleetTime) {
   ASSERT_EQ(rig.plans.got.back().stops.count, 1u);  // the request was understood
   EXPECT_EQ(rig.plans.got.back().stops[0].ugv_id, 0);
   EXPECT_EQ(rig.uav->health().stamps.from_future + rig.uav->health().stamps.too_old, 0u);
+}
+
+// The time server (UAV 0) is lost. A UGV that was synchronised keeps its estimate; one that starts
+// afterwards (a restarted ugv_fw) learns fleet time from UAV 1, which stands in with the fleet
+// time it learnt, and only once it has not heard the server for a while.
+TEST(UavSupervisorTask, AnotherUavStandsInForALostTimeServer) {
+  UavSupervisorConfig config;
+  config.id = 1;
+  Rig rig(nullptr, config);
+  ClockEnd<ClockServer> server(*rig.bus, 0, kServerAhead);
+  ClockEnd<platform::UgvFleetClock> early(*rig.bus, 3, -7s), late(*rig.bus, 4, -7s);
+  ASSERT_TRUE(rig.ex.add({&server, 20ms, 2ms}));
+  ASSERT_TRUE(rig.ex.add({&early, 20ms, 2ms}));
+  ASSERT_TRUE(rig.ex.add({&late, 20ms, 2ms}));
+  ASSERT_TRUE(rig.ex.init());
+  server.on = early.on = true;
+  rig.ex.run_until(rig.ex.now() + 2s);
+  const auto fleet_now = [&] { return rig.ex.now() + kServerAhead; };
+  ASSERT_TRUE(early.clock.synchronised(rig.ex.now() + early.ahead));
+  EXPECT_EQ(early.clock.standby_exchanges(), 0u);  // UAV 1 hears the server: it does not answer
+  ASSERT_TRUE(rig.uav->fleet_clock().synchronised(rig.ex.now()));
+
+  server.on = false;  // lost
+  late.on = true;
+  rig.ex.run_until(rig.ex.now() + 2s);
+  EXPECT_FALSE(late.clock.has_estimate());  // not yet: the server was heard 2 s ago
+  rig.ex.run_until(rig.ex.now() + 2s);
+  ASSERT_TRUE(late.clock.synchronised(rig.ex.now() + late.ahead));
+  EXPECT_GT(late.clock.standby_exchanges(), 0u);
+  EXPECT_EQ(early.clock.standby_exchanges(), 0u);  // synchronised: it kept its own estimate
+  // Both convert fleet time to their clocks to within milliseconds.
+  for (const auto* j : {&early, &late}) {
+    const double off_s = to_seconds(j->clock.to_local(fleet_now()) - (rig.ex.now() + j->ahead));
+    EXPECT_LT(std::abs(off_s), 0.005) << j->clock.standby_exchanges();
+  }
 }

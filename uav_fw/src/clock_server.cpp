@@ -11,7 +11,8 @@ Status ClockServer::attach(platform::Transport& transport, RobotId uav_id) {
 
 namespace {
 
-// The exchange's stamps and sequence number, for either kind of asker.
+// The exchange's stamps (fleet time: `now` is when the request was read and the answer sent)
+// and sequence number, for either kind of asker.
 template <class Reply, class Request>
 Reply answer(const Request& q, TimePoint now) {
   Reply r;
@@ -24,19 +25,22 @@ Reply answer(const Request& q, TimePoint now) {
 
 }  // namespace
 
-void ClockServer::step(TimePoint now) {
+void ClockServer::step(TimePoint now, std::optional<Duration> fleet_minus_local) {
   if (transport_ == nullptr) return;
+  const bool serving = fleet_minus_local.has_value();
+  const TimePoint fleet = now + fleet_minus_local.value_or(Duration::zero());
   msg::ClockRequest q;
   while (requests_.pop(q)) {
-    auto r = answer<msg::ClockReply>(q, now);
+    if (!serving) continue;
+    auto r = answer<msg::ClockReply>(q, fleet);
     r.uav_id = uav_id_;
     r.ugv_id = q.ugv_id;
     if (transport_->publish(r)) ++answered_;
   }
   msg::UavClockRequest uq;
   while (uav_requests_.pop(uq)) {
-    if (uq.uav_id == uav_id_) continue;  // our own
-    auto r = answer<msg::UavClockReply>(uq, now);
+    if (!serving || uq.uav_id == uav_id_) continue;  // our own
+    auto r = answer<msg::UavClockReply>(uq, fleet);
     r.server_id = uav_id_;
     r.uav_id = uq.uav_id;
     if (transport_->publish(r)) ++answered_;

@@ -102,10 +102,9 @@ Status UavSupervisorTask::init(TimePoint now) {
   if (Status s = statuses_in_.attach(transport_); !s) return s;
   if (Status s = peer_odometry_in_.attach(transport_); !s) return s;
   if (Status s = peer_plans_in_.attach(transport_); !s) return s;
-  if (time_server()) {
-    if (Status s = clock_server_.attach(transport_, config_.id); !s) return s;
-  } else if (Status s = fleet_time_.attach(transport_, config_.id); !s) {
-    return s;
+  if (Status s = clock_server_.attach(transport_, config_.id); !s) return s;
+  if (!time_server()) {
+    if (Status s = fleet_time_.attach(transport_, config_.id); !s) return s;
   }
   last_control_ = now;
   initialised_ = true;
@@ -118,8 +117,8 @@ Status UavSupervisorTask::init(TimePoint now) {
 void UavSupervisorTask::control_step(TimePoint now) {
   const double dt = std::clamp(to_seconds(now - last_control_), 1e-3, 0.1);
   last_control_ = now;
-  clock_server_.step(now);
   fleet_time_.step(now);
+  clock_server_.step(now, clock_service(now));
   const bool stamping = knows_fleet_time();  // else nothing stamped goes out yet
   const hal::FlightStatus flight = flight_out_.update(now);
   if (flight.state == msg::UavFlight::kLost && flight_status_.state != msg::UavFlight::kLost)
@@ -398,6 +397,18 @@ void UavSupervisorTask::read_statuses(TimePoint now) {
 }
 
 // Every control step: where the others fly (separation needs it fresh).
+// The time server answers on its own clock; another UAV stands in while it knows fleet time and
+// has not heard the server for a while (a robot starting after the server was lost can still
+// learn fleet time; see platform/fleet_clock.hpp).
+std::optional<Duration> UavSupervisorTask::clock_service(TimePoint now) const {
+  if (time_server()) return Duration::zero();
+  if (fleet_time_.synchronised(now) &&
+      !fleet_time_.heard_server_within(now, config_.fleet_clock.standby_after)) {
+    return to_fleet(now) - now;
+  }
+  return std::nullopt;
+}
+
 void UavSupervisorTask::read_peer_odometry(TimePoint now) {
   msg::UavOdometry od;
   while (peer_odometry_in_.pop(od)) {

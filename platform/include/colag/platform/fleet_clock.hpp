@@ -7,9 +7,14 @@
 // honest.
 //
 // Asks 20 times a second until synchronised (and after an exchange that did not fit), then once
-// a second. Allocation-free; step() runs in the control loop, so the reply's receive time is taken
-// within one control period. A UGV asks on ClockRequest / ClockReply (UgvFleetClock), another
-// UAV on UavClockRequest / UavClockReply (UavFleetClock): the same exchange.
+// a second. Only the time server's replies count, but for a robot that is not synchronised while
+// the time server has been silent for `standby_after` (it started, or restarted, after the server
+// was lost): then another UAV's, which answers with the fleet time it learnt while it has it and
+// does not hear the server (uav::ClockServer). A synchronised robot keeps its own estimate rather
+// than take a stand-in's (no two stand-ins feed each other). Allocation-free; step() runs in the
+// control loop, so the reply's receive time is taken within one control period. A UGV asks on
+// ClockRequest / ClockReply (UgvFleetClock), another UAV on UavClockRequest / UavClockReply
+// (UavFleetClock): the same exchange.
 #include <cstdint>
 
 #include "colag/common/clock_offset_filter.hpp"
@@ -24,6 +29,7 @@ struct FleetClockConfig {
   Duration max_reply_age = std::chrono::seconds(5);  // an older exchange is not used
   // With several UAVs one clock is fleet time: this UAV's. Replies of any other are not used.
   RobotId time_server = 0;
+  Duration standby_after = std::chrono::seconds(3);
   ClockFilterConfig filter;
 };
 
@@ -47,10 +53,16 @@ class FleetClock {
     Reply r;
     while (replies_.pop(r)) {
       // Ours, answering a request of this process (not a replay, not a predecessor's).
-      if (r.*kAskedBy != id_ || r.*kServer != config_.time_server || r.request_stamp > now ||
+      const bool from_server = r.*kServer == config_.time_server;
+      if (r.*kAskedBy != id_ || (!from_server && !takes_standby(now)) || r.request_stamp > now ||
           now - r.request_stamp > config_.max_reply_age) {
         ++replies_rejected_;
         continue;
+      }
+      if (from_server) {
+        last_from_server_ = now;
+      } else {
+        ++standby_exchanges_;
       }
       const auto verdict = filter_.add({r.request_stamp, r.received, r.stamp, now});
       if (verdict == ClockOffsetFilter::Verdict::kInvalid) ++replies_rejected_;
@@ -77,8 +89,17 @@ class FleetClock {
   }
   const ClockOffsetFilter& filter() const { return filter_; }
   std::uint64_t replies_rejected() const { return replies_rejected_; }
+  std::uint64_t standby_exchanges() const { return standby_exchanges_; }  // from a stand-in
+  // Whether the time server answered within `d` of `now`.
+  bool heard_server_within(TimePoint now, Duration d) const {
+    return !elapsed(now, last_from_server_, d);
+  }
 
  private:
+  bool takes_standby(TimePoint now) const {
+    return !synchronised(now) && !heard_server_within(now, config_.standby_after);
+  }
+
   FleetClockConfig config_;
   ClockOffsetFilter filter_;
   Transport* transport_ = nullptr;
@@ -88,6 +109,8 @@ class FleetClock {
   TimePoint last_request_ = kNever;
   bool hurry_ = true;  // ask at the fast rate
   std::uint64_t replies_rejected_ = 0;
+  TimePoint last_from_server_ = kNever;
+  std::uint64_t standby_exchanges_ = 0;
 };
 
 using UgvFleetClock = FleetClock<msg::ClockRequest, msg::ClockReply, &msg::ClockRequest::ugv_id,
