@@ -8,8 +8,8 @@ namespace colag::test {
 // Must be called before the first participant is created.
 void confine_dds_to_loopback();
 
-// A DDS domain id private to this test run (derived from the process id), so that parallel
-// test processes do not hear each other.
+// A DDS domain id private to this test process (the same on every call), held against other
+// test processes and SITL runs on this machine, so that none hears another.
 std::uint32_t private_domain_id();
 
 }  // namespace colag::test
