@@ -43,12 +43,6 @@ double edge_orbit_radius_of(const UavSupervisorConfig& c) {
                            c.edge_beyond_blind_m, c.orbit_radius_m);
 }
 
-platform::FleetClockConfig fleet_clock_config(const UavSupervisorConfig& c) {
-  platform::FleetClockConfig f = c.fleet_clock;
-  f.time_server = c.time_server;
-  return f;
-}
-
 UavSupervisorConfig with_camera_altitude(UavSupervisorConfig c) {
   const double lowest_beam = blind_cone_elevation_deg(c.lidar_pattern, c.lidar_mount.q);
   const double highest =
@@ -78,7 +72,7 @@ UavSupervisorTask::UavSupervisorTask(const UavSupervisorConfig& config,
                     &UavSupervisorTask::sharing_step),
       scheduling_loop_(*this, "uav_scheduling", &UavSupervisorTask::init,
                        &UavSupervisorTask::scheduling_step),
-      fleet_time_(fleet_clock_config(config_)),
+      fleet_time_(config_.fleet_clock),
       mapper_(mapper_config(config_), fork_join),
       no_returns_(config.lidar_pattern),
       team_filter_(config.team),

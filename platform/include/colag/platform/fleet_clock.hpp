@@ -27,7 +27,8 @@ struct FleetClockConfig {
   Duration fast_period = std::chrono::milliseconds(50);
   Duration period = std::chrono::seconds(1);
   Duration max_reply_age = std::chrono::seconds(5);  // an older exchange is not used
-  // With several UAVs one clock is fleet time: this UAV's. Replies of any other are not used.
+  // With several UAVs one clock is fleet time: this UAV's. Another's replies are taken only as a
+  // stand-in's (see the top of the file).
   RobotId time_server = 0;
   Duration standby_after = std::chrono::seconds(3);
   ClockFilterConfig filter;

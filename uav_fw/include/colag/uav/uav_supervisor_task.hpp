@@ -58,12 +58,11 @@ struct UavSupervisorConfig {
   // A peer fallen silent flies on until its flight controller's own failsafe (PX4: offboard
   // loss after COM_OF_LOSS_T, 1 s by default), then brakes: it is kept clear of along that line.
   Duration peer_failsafe = std::chrono::seconds(1);
-  // The UAV whose clock is fleet time: it answers clock requests. Every other UAV learns fleet
-  // time from it as a UGV does (platform/fleet_clock.hpp) and converts at its edges; until its
-  // first exchange it publishes nothing stamped and reads nothing stamped; while it knows fleet
-  // time and has not heard the server for fleet_clock.standby_after it answers in its stead
-  // (time_server is taken from here: fleet_clock.time_server is set to it).
-  RobotId time_server = 0;
+  // Fleet time: fleet_clock.time_server is the UAV whose clock it is; it answers clock requests.
+  // Every other UAV learns fleet time from it as a UGV does (platform/fleet_clock.hpp) and
+  // converts at its edges; until its first exchange it publishes nothing stamped and reads
+  // nothing stamped; while it knows fleet time and has not heard the server for
+  // fleet_clock.standby_after it answers in its stead.
   platform::FleetClockConfig fleet_clock;
   // The paper's fallback when no order meets every deadline: plan as if v_max were 1.5x, 2.25x,
   // ... higher until one does (up to 100 times). Off: minimise total lateness instead.
@@ -274,7 +273,7 @@ class UavSupervisorTask {
   ClockServer clock_server_;
   platform::UavFleetClock fleet_time_;
   // Fleet time <-> this UAV's clock (the identity on the time server).
-  bool time_server() const { return config_.id == config_.time_server; }
+  bool time_server() const { return config_.id == config_.fleet_clock.time_server; }
   bool knows_fleet_time() const { return time_server() || fleet_time_.has_estimate(); }
   TimePoint to_fleet(TimePoint t) const { return time_server() ? t : fleet_time_.to_fleet(t); }
   TimePoint to_local(TimePoint t) const { return time_server() ? t : fleet_time_.to_local(t); }
