@@ -175,6 +175,15 @@ int run(int argc, char** argv) {
       ->add_option("--uav-lost-id", cfg.faults.uav_lost_id,
                    "which UAV --uav-lost-at loses (default: the last; 0 is the time server)")
       ->check(CLI::Range(0, static_cast<int>(limits::kMaxUavs) - 1));
+  std::string kill_ugv;
+  faults->add_option("--kill-ugv", kill_ugv,
+                     "I@T: UGV I's firmware process dies at T s (its state and readers with it; "
+                     "its base stops it), as scripts/sitl.sh --kill-ugv does with ugv_fw");
+  faults
+      ->add_option("--restart-after", cfg.faults.restart_after_s,
+                   "with --kill-ugv: a new process starts S s later, from the same "
+                   "configuration (it must localise again and finish its mission)")
+      ->check(CLI::Range(0.0, 1e6));
   // Clocks: every robot keeps its own (fleet time is the UAV's; the UGVs learn it over DDS).
   std::string clock_step;
   auto* clocks = app.add_option_group("clocks", "each robot's own clock");
@@ -251,6 +260,12 @@ int run(int argc, char** argv) {
     }
   }
 
+  if (!kill_ugv.empty() &&
+      !mission::parse_kill(kill_ugv, cfg.faults.kill_ugv, cfg.faults.kill_ugv_at_s)) {
+    std::fprintf(stderr, "colag_sim: --kill-ugv: expected I@T (UGV I, T > 0 s), got '%s'\n",
+                 kill_ugv.c_str());
+    return 2;
+  }
   if (!clock_step.empty()) {
     const auto colon = clock_step.find(':');
     char* end = nullptr;

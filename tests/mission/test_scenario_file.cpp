@@ -163,12 +163,17 @@ TEST(ScenarioFile, SeveralUavsAndTheLossOfOneReachTheMission) {
       load_scenario_file(test::write_temp_file("uavs.yaml",
                                                "map: {generator: dense}\nuav: {count: 3}\n"
                                                "ugvs:\n  - {start: [0, 16, -90], goal: [0, -16]}\n"
-                                               "faults: {uav_lost_at_s: 42, uav_lost_id: 0}\n"),
+                                               "faults: {uav_lost_at_s: 42, uav_lost_id: 0,\n"
+                                               "  kill_ugv: 0, kill_ugv_at_s: 30,\n"
+                                               "  restart_after_s: 5}\n"),
                          cfg, error))
       << error;
   EXPECT_EQ(cfg.uavs, 3);
   EXPECT_DOUBLE_EQ(cfg.faults.uav_lost_at_s, 42.0);
   EXPECT_EQ(cfg.faults.uav_lost_id, 0);
+  EXPECT_EQ(cfg.faults.kill_ugv, 0);
+  EXPECT_DOUBLE_EQ(cfg.faults.kill_ugv_at_s, 30.0);
+  EXPECT_DOUBLE_EQ(cfg.faults.restart_after_s, 5.0);
   EXPECT_FALSE(load_scenario_file(
       test::write_temp_file("uavs9.yaml",
                             "map: {generator: dense}\nuav: {count: 9}\n"

@@ -28,6 +28,15 @@ MissionConfig one_of_two_lost() {
   return cfg;
 }
 
+// The same with UAV 0, the time server, lost, and every robot's clock an hour off, drifting.
+MissionConfig time_server_lost() {
+  MissionConfig cfg = one_of_two_lost();
+  cfg.faults.uav_lost_id = 0;
+  cfg.clocks.offset_s = 3600.0;
+  cfg.clocks.drift_ppm = 50.0;
+  return cfg;
+}
+
 // Flies it; every UGV must reach without touching anything.
 std::unique_ptr<Mission> fly_safely(const MissionConfig& cfg, MissionOutcome& o) {
   std::string error;
@@ -66,12 +75,8 @@ TEST(SeveralUavs, OneOfTwoDiesMidMissionAndEveryUgvStillReachesSafely) {
 // other UAV and the UGVs fly on with the fleet time they have learnt (its bound grows by the
 // crystals' drift margin, milliseconds a minute), and UAV 1 takes every UGV over.
 TEST(SeveralUavs, TheTimeServerDiesAndTheOthersKeepFleetTime) {
-  MissionConfig cfg = one_of_two_lost();
-  cfg.faults.uav_lost_id = 0;
-  cfg.clocks.offset_s = 3600.0;
-  cfg.clocks.drift_ppm = 50.0;
   MissionOutcome o;
-  const std::unique_ptr<Mission> m = fly_safely(cfg, o);
+  const std::unique_ptr<Mission> m = fly_safely(time_server_lost(), o);
   ASSERT_TRUE(m);
   for (const UgvOutcome& u : o.ugvs) {
     EXPECT_GE(u.clock_error_s, 0.0) << "UGV " << u.id;  // still synchronised at the end
@@ -80,6 +85,24 @@ TEST(SeveralUavs, TheTimeServerDiesAndTheOthersKeepFleetTime) {
   EXPECT_EQ(m->uav(1)->health().peers_lost, 1u);
   EXPECT_TRUE(m->uav(1)->fleet_clock().has_estimate());
   EXPECT_GT(o.sim_time_s, 40.0);
+}
+
+// A UGV's firmware restarts 10 s after the time server was lost: nobody would tell it fleet time
+// but the other UAV, which stands in for the server (it has not heard it for 3 s); the UGV learns
+// fleet time from it, is localised again and finishes.
+TEST(SeveralUavs, AUgvRestartedAfterTheTimeServerIsLostLearnsFleetTimeFromAnother) {
+  MissionConfig cfg = time_server_lost();
+  cfg.faults.kill_ugv = 2;
+  cfg.faults.kill_ugv_at_s = 25.0;
+  cfg.faults.restart_after_s = 5.0;
+  MissionOutcome o;
+  const std::unique_ptr<Mission> m = fly_safely(cfg, o);
+  ASSERT_TRUE(m);
+  EXPECT_GT(m->uav(1)->clock_server().answered(), 0u);  // UAV 1 stood in
+  // The new process learnt fleet time (from UAV 1: UAV 0 was long gone) and kept it.
+  EXPECT_TRUE(m->ugv(2).fleet_clock().has_estimate());
+  EXPECT_GE(o.ugvs[2].clock_error_s, 0.0);
+  EXPECT_LT(o.ugvs[2].clock_error_s, 0.1);
 }
 
 TEST(SeveralUavs, TheLargestFleetsAreBuiltAndFly) {
@@ -94,6 +117,9 @@ TEST(SeveralUavs, TheLargestFleetsAreBuiltAndFly) {
   cfg.max_time_s = 2.0;
   cfg.faults.uav_lost_at_s = 1.0;
   cfg.faults.base_fault_at_s = 1.0;
+  cfg.faults.kill_ugv = 1;
+  cfg.faults.kill_ugv_at_s = 0.5;
+  cfg.faults.restart_after_s = 0.5;
   ASSERT_TRUE(world_from_name("field", cfg.world, error)) << error;
   std::unique_ptr<Mission> m = Mission::compose(cfg, error);
   ASSERT_TRUE(m) << error;

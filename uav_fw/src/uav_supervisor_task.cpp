@@ -52,6 +52,13 @@ UavSupervisorConfig with_camera_altitude(UavSupervisorConfig c) {
   return c;
 }
 
+// A status whose position is its estimator's (not the start its mission plan gives it).
+bool localised(const msg::UgvStatus& s) {
+  return s.mode != msg::UgvMode::kWaitingForInit &&
+         !(s.mode == msg::UgvMode::kBlocked &&
+           s.blocked_reason == msg::BlockedReason::kNotLocalised);
+}
+
 }  // namespace
 
 UavSupervisorTask::UavSupervisorTask(const UavSupervisorConfig& config,
@@ -253,10 +260,7 @@ void UavSupervisorTask::filter_team(TimePoint now) {
   team_filter_.begin();
   for (std::size_t id = 0; id < ugvs_.size(); ++id) {
     const Ugv& u = ugvs_[id];
-    if (!u.known || now - u.heard > config_.status_timeout ||
-        u.status.mode == msg::UgvMode::kWaitingForInit) {
-      continue;
-    }
+    if (!u.known || now - u.heard > config_.status_timeout || !localised(u.status)) continue;
     const double var = std::max({u.status.covariance[0], u.status.covariance[4], 0.0});
     (void)team_filter_.add(id, Vec2(u.status.position_m[0], u.status.position_m[1]),
                            3.0 * std::sqrt(var), now - u.heard, u.status.yaw_rad,
@@ -338,6 +342,7 @@ void UavSupervisorTask::read_requests(TimePoint now) {
   }
   for (Request& r : requests_) {
     if (r.served && now >= r.served_until) r.served = false;  // its turn again
+    if (!r.active) r.last_fix_tried = false;
     if (r.active && now - r.heard > config_.request_timeout)
       r.active = false;  // heartbeats stopped
   }
@@ -348,15 +353,24 @@ void UavSupervisorTask::read_requests(TimePoint now) {
 void UavSupervisorTask::place_stops() {
   for (RobotId id = 0; id < limits::kMaxUgvs; ++id) {
     Request& r = requests_[id];
-    r.support = r.centre = r.asked;
-    r.radius = config_.orbit_radius_m;
     const Ugv& u = ugvs_[id];
+    Vec2 p(u.status.position_m[0], u.status.position_m[1]), collision = r.collision;
+    double yaw = u.status.yaw_rad;
+    // Lost after we knew where it was (a restarted firmware asks where its mission starts): it
+    // has not driven since, look there first.
+    r.at_last_fix =
+        r.active && u.known && u.fixed_before && !localised(u.status) && !r.last_fix_tried;
+    if (r.at_last_fix) {
+      p = collision = u.last_fix;
+      yaw = u.last_fix_yaw_rad;
+    }
+    r.support = r.centre = r.at_last_fix ? p : r.asked;
+    r.radius = config_.orbit_radius_m;
     if (!r.active || !u.known || std::isnan(edge_orbit_radius_)) continue;
-    const Vec2 p(u.status.position_m[0], u.status.position_m[1]);
-    if (!((r.collision - p).norm() <= config_.edge_stop_m)) continue;  // NaN: not at its edge
+    if (!((collision - p).norm() <= config_.edge_stop_m)) continue;  // NaN: not at its edge
     r.centre = p;
     r.radius = edge_orbit_radius_;
-    r.support = p + r.radius * Vec2(std::cos(u.status.yaw_rad), std::sin(u.status.yaw_rad));
+    r.support = p + r.radius * Vec2(std::cos(yaw), std::sin(yaw));
   }
 }
 
@@ -387,6 +401,12 @@ void UavSupervisorTask::read_statuses(TimePoint now) {
         !std::isfinite(s.scout_in_s))
       s.scout_in_s = -1.0;  // no scouting point: the rest of the status stands
     u.status = s;
+    if (localised(s)) {
+      u.fixed_before = true;
+      u.last_fix = Vec2(s.position_m[0], s.position_m[1]);
+      u.last_fix_yaw_rad = s.yaw_rad;
+      requests_[s.ugv_id].last_fix_tried = false;
+    }
   }
 }
 
@@ -764,6 +784,7 @@ void UavSupervisorTask::scheduling_step(TimePoint now) {
     } else if (!target_is_scout_ && elapsed(now, hover_since_, config_.hover_timeout)) {
       // The UGV keeps asking although we are there: give the others a turn.
       Request& r = requests_[static_cast<std::size_t>(target_ugv_)];
+      if (r.at_last_fix) r.last_fix_tried = true;  // not there: where it asks next time
       r.served = true;
       r.since = now + config_.served_cooldown;  // we came: its age counts from its next turn
       r.served_at = r.asked;

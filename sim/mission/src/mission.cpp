@@ -11,6 +11,7 @@
 #include "colag/platform/loopback_transport.hpp"
 #include "colag/platform/monotonic_clock.hpp"
 #include "colag/platform/worker_pool.hpp"
+#include "colag/sim/mission/reboot_link.hpp"
 #include "colag/sim/mission/truth_metrics.hpp"
 #include "colag/sim/mission/world_setup.hpp"
 #include "colag/sim/world/sim_world.hpp"
@@ -310,14 +311,123 @@ void add_unknown_cells(const uav::UavSupervisorTask& uav, const sim::BoxWorld& w
   }
 }
 
-// One UGV: its CAN drivers on the world's link, its task, and the outbox its lane publishes
-// through.
+// One UGV: its CAN drivers on the world's link, its task, the outbox its lane publishes through
+// and the link its firmware process sees of it (the process may die and start again:
+// FaultConfig::kill_ugv).
 struct UgvStack {
   std::unique_ptr<platform::LaneOutbox> outbox;
+  std::unique_ptr<RebootLink> link;
   std::unique_ptr<hal::can::CanBase> base;
   std::unique_ptr<ugv::UgvNavTask> task;
   std::unique_ptr<SelfPerceptionTask> perception;
   Vec2 goal;
+  ugv::UgvNavConfig config;  // what a restarted process starts from
+  // Its firmware's processes: the current one's number, whether it is dead, how long it has stood
+  // still dead (a fault, s) and what the earlier ones waited (s per part).
+  int generation = 0;
+  bool dead = false;
+  double stood_dead_s = 0.0;
+  std::array<double, ugv::kWaitParts> earlier_waiting_s{};
+  // Waiting so far across its processes, at mission time t (s per part).
+  std::array<double, ugv::kWaitParts> waiting_parts_s() const {
+    std::array<double, ugv::kWaitParts> out = earlier_waiting_s;
+    for (std::size_t k = 0; k < out.size(); ++k)
+      out[k] += to_seconds(task->waiting_parts()[k]);
+    out[static_cast<std::size_t>(ugv::WaitPart::kFault)] += stood_dead_s;
+    return out;
+  }
+  // What the earlier processes waited, and this one while dead (s).
+  double waited_before_s() const {
+    double sum = stood_dead_s;
+    for (double w : earlier_waiting_s)
+      sum += w;
+    return sum;
+  }
+};
+
+// One loop of a UGV's firmware across its processes: it steps the running process's loop,
+// nothing while none runs, and initialises a new process's loop before its first step.
+class UgvBoardRow final : public platform::Task {
+ public:
+  UgvBoardRow(UgvStack& ugv, std::size_t row, int lane) : ugv_(ugv), row_(row), lane_(lane) {}
+  const char* name() const override { return current().name(); }
+  Status init(TimePoint now) override {
+    generation_ = ugv_.generation;
+    return current().init(now);
+  }
+  void step(TimePoint now) override {
+    if (ugv_.dead) return;
+    if (generation_ != ugv_.generation) {
+      generation_ = ugv_.generation;
+      (void)current().init(now);  // its readers take the link's relays over: nothing to refuse
+    }
+    current().step(now);
+  }
+  void on_overrun(Duration d) override {
+    if (!ugv_.dead) current().on_overrun(d);
+  }
+
+ private:
+  platform::Task& current() const { return *ugv_.task->rows(lane_)[row_].task; }
+  UgvStack& ugv_;
+  std::size_t row_;
+  int lane_;
+  int generation_ = 0;
+};
+
+// FaultConfig::kill_ugv: the UGV's firmware process dies (its loops stop, its readers go, its
+// base's watchdog stops the wheels) and, restart_after_s later, a new one starts from the same
+// configuration, on a new CAN socket (nothing the base sent meanwhile reaches it).
+class UgvKillWatch final : public platform::Task {
+ public:
+  UgvKillWatch(sim::SimWorld& world, UgvStack& ugv, int id, const FaultConfig& f)
+      : world_(world),
+        ugv_(ugv),
+        id_(id),
+        kill_at_s_(f.kill_ugv_at_s),
+        restart_after_s_(f.restart_after_s) {}
+  static constexpr Duration kPeriod = 20ms;
+  const char* name() const override { return "ugv_kill"; }
+  void step(TimePoint now) override {
+    const double t = to_seconds(now);
+    if (!killed_ && t >= kill_at_s_) {
+      killed_ = true;
+      ugv_.dead = true;
+      ugv_.link->kill();
+    }
+    if (!ugv_.dead) return;
+    if (restart_after_s_ >= 0.0 && t >= kill_at_s_ + restart_after_s_) {
+      restart();
+      return;
+    }
+    // Standing dead is waiting (a fault); coasting to a stop on the base's watchdog is not.
+    if (std::abs(world_.ugv(id_).speed_mps()) < ugv::kStillSpeed_mps)
+      ugv_.stood_dead_s += to_seconds(kPeriod);
+  }
+
+ private:
+  void restart() {
+    ugv_.earlier_waiting_s = ugv_.waiting_parts_s();
+    ugv_.stood_dead_s = 0.0;
+    ugv_.task.reset();
+    ugv_.base.reset();
+    hal::CanFrame frame;
+    hal::CanBus& can = world_.ugv_can(id_);
+    while (can.receive(frame)) {
+    }
+    const sim::UgvBodyConfig& body = world_.ugv(id_).config();
+    ugv_.base = std::make_unique<hal::can::CanBase>(can, body.base, body.geometry);
+    ugv_.link->start();
+    ugv_.task = std::make_unique<ugv::UgvNavTask>(ugv_.config, *ugv_.link, ugv_.base->odometry(),
+                                                  ugv_.base->drive());
+    ++ugv_.generation;
+    ugv_.dead = false;
+  }
+  sim::SimWorld& world_;
+  UgvStack& ugv_;
+  int id_;
+  double kill_at_s_, restart_after_s_;
+  bool killed_ = false;
 };
 
 // The ground truth of standing still, every world step: each UGV slower than 0.05 m/s before
@@ -389,6 +499,8 @@ struct Mission::Parts {
   std::unique_ptr<platform::TransportPump> pump;
   std::vector<std::unique_ptr<uav::UavSupervisorTask>> uavs;
   std::unique_ptr<UavLossWatch> uav_loss;
+  std::unique_ptr<UgvKillWatch> ugv_kill;
+  std::vector<std::unique_ptr<UgvBoardRow>> board_rows;
   std::vector<std::unique_ptr<Mortal>> mortals;
   std::unique_ptr<ReferenceFrameTask> reference;
   std::vector<UgvStack> ugvs;
@@ -503,7 +615,9 @@ std::unique_ptr<Mission> Mission::compose(const MissionConfig& cfg, std::string&
     s.base =
         std::make_unique<hal::can::CanBase>(p->world->ugv_can(i), wc.ugv.base, wc.ugv.geometry);
     s.outbox = std::make_unique<platform::LaneOutbox>(p->bus->port(static_cast<std::size_t>(i)));
-    s.task = std::make_unique<ugv::UgvNavTask>(nc, *s.outbox, s.base->odometry(), s.base->drive());
+    s.link = std::make_unique<RebootLink>(*s.outbox);
+    s.config = nc;
+    s.task = std::make_unique<ugv::UgvNavTask>(nc, *s.link, s.base->odometry(), s.base->drive());
     if (cfg.self_perception)
       s.perception =
           std::make_unique<SelfPerceptionTask>(*s.outbox, *p->world, i, beam_pattern_of(wc.lidar));
@@ -541,6 +655,12 @@ std::unique_ptr<Mission> Mission::compose(const MissionConfig& cfg, std::string&
     p->uav_loss = std::make_unique<UavLossWatch>(*p->world, lost, cfg.faults.uav_lost_at_s);
     if (st) st = p->ex->add({p->uav_loss.get(), 20ms, 1ms});
   }
+  if (cfg.faults.kill_ugv >= 0 && cfg.faults.kill_ugv < cfg.ugvs) {
+    p->ugv_kill = std::make_unique<UgvKillWatch>(
+        *p->world, p->ugvs[static_cast<std::size_t>(cfg.faults.kill_ugv)], cfg.faults.kill_ugv,
+        cfg.faults);
+    if (st) st = p->ex->add({p->ugv_kill.get(), UgvKillWatch::kPeriod, 1ms});
+  }
   for (std::size_t k = 0; k < p->uavs.size() && st; ++k) {
     auto rows = p->uavs[k]->rows();
     if (p->uav_loss && static_cast<int>(k) == lost) {
@@ -555,7 +675,12 @@ std::unique_ptr<Mission> Mission::compose(const MissionConfig& cfg, std::string&
   for (int i = 0; i < cfg.ugvs && st; ++i) {
     UgvStack& s = p->ugvs[static_cast<std::size_t>(i)];
     const int lane = i + 1;
-    st = add_rows(s.task->rows(lane), p->clocks[static_cast<std::size_t>(i) + 1]);
+    std::array<platform::TaskEntry, 2> rows = s.task->rows(lane);
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      p->board_rows.push_back(std::make_unique<UgvBoardRow>(s, k, lane));
+      rows[k].task = p->board_rows.back().get();
+    }
+    st = add_rows(rows, p->clocks[static_cast<std::size_t>(i) + 1]);
     if (st && s.perception)
       st = p->ex->add(on_clock({s.perception.get(), 50ms, 10ms, Duration{}, lane}, p->clocks[0]));
   }
@@ -620,8 +745,10 @@ void Mission::fly(MissionTrace* trace, MissionWatcher* watcher) {
       o.stops = p.still->counts[i].stops;
       // How honest its covariance is: NEES of (x, y, yaw) against the truth.
       const UgvEkf& ekf = task.estimator();
-      // Its estimate is in the UAV odometry's frame: so is the truth it is held against.
-      if (ekf.initialized() && task.mode() != msg::UgvMode::kArrived && !body.frozen()) {
+      // Its estimate is in the UAV odometry's frame: so is the truth it is held against. A dead
+      // firmware process has no estimate.
+      const bool running = !ugvs[i].dead;
+      if (running && ekf.initialized() && task.mode() != msg::UgvMode::kArrived && !body.frozen()) {
         const Pose2 truth = p.world->odometry_frame().to_odometry(now_pose);
         add_to_mean(pose_nees(ekf.pose(), ekf.covariance(), truth), o.nees_mean, o.nees_samples);
         for (std::size_t k = 0; k < o.calibration.size(); ++k) {
@@ -630,28 +757,30 @@ void Mission::fly(MissionTrace* trace, MissionWatcher* watcher) {
           o.calibration_sigma[k] = std::sqrt(ekf.state_covariance()(s, s));
         }
       }
-      o.final_mode = task.mode();
+      // A dead firmware process stands as a fault would.
+      const msg::UgvMode mode = running ? task.mode() : msg::UgvMode::kFault;
+      o.final_mode = mode;
       o.clock_steps = task.fleet_clock().filter().counters().steps;
       o.clock_error_s = task.fleet_clock().error_s(task.now());
-      o.waiting_time_s = task.waiting_time_s();
+      const std::array<double, ugv::kWaitParts> parts = ugvs[i].waiting_parts_s();
+      o.waiting_time_s = task.waiting_time_s() + ugvs[i].waited_before_s();
       for (std::size_t k = 0; k < ugv::kWaitParts; ++k)
-        o.waiting_parts[k] = to_seconds(task.waiting_parts()[k]);
-      if (task.mode() == msg::UgvMode::kBlocked) {
+        o.waiting_parts[k] = parts[k];
+      if (mode == msg::UgvMode::kBlocked) {
         o.blocked_s += 0.1;
         o.blocked_reason = task.blocked_reason();
       }
       if (trace != nullptr) {
-        const bool stopped =
-            task.mode() != msg::UgvMode::kDriving && task.mode() != msg::UgvMode::kArrived;
+        const bool stopped = mode != msg::UgvMode::kDriving && mode != msg::UgvMode::kArrived;
         auto& open = open_stops[i];
         if (stopped && open >= 0) {
           const MissionTrace::Stop& s = trace->stops[static_cast<std::size_t>(open)];
-          if (s.why != task.mode() || s.blocked != task.blocked_reason()) open = -1;  // a new why
+          if (s.why != mode || s.blocked != task.blocked_reason()) open = -1;  // a new why
         }
         if (stopped && open < 0) {
           open = static_cast<int>(trace->stops.size());
           trace->stops.push_back(
-              {static_cast<int>(i), t - 0.1, t, body.pose().p, task.mode(), task.blocked_reason()});
+              {static_cast<int>(i), t - 0.1, t, body.pose().p, mode, task.blocked_reason()});
         } else if (stopped) {
           trace->stops[static_cast<std::size_t>(open)].to_s = t;
         } else {
@@ -663,7 +792,8 @@ void Mission::fly(MissionTrace* trace, MissionWatcher* watcher) {
         o.reach_time_s = t;
         o.reached = (body.pose().p - ugvs[i].goal).norm() <= cfg.goal_tolerance_m;
       }
-      all_done = all_done && (arrived || body.frozen());
+      const bool dead_for_good = !running && cfg.faults.restart_after_s < 0.0;
+      all_done = all_done && (arrived || body.frozen() || dead_for_good);
       if (trace != nullptr && tick % 5 == 0) {
         const bool init = task.estimator().initialized();
         trace->ugv_paths[i].push_back(

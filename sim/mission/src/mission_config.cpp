@@ -40,6 +40,19 @@ bool parse_window(const std::string& s, TimeWindow& out) {
   return true;
 }
 
+bool parse_kill(const std::string& s, int& ugv, double& at_s) {
+  const auto at = s.find('@');
+  if (at == std::string::npos || at == 0 || at + 1 == s.size()) return false;
+  const std::string a = s.substr(0, at), b = s.substr(at + 1);
+  if (a.find_first_not_of("0123456789") != std::string::npos || a.size() > 6) return false;
+  char* end = nullptr;
+  const double t = std::strtod(b.c_str(), &end);
+  if (*end != '\0' || !(t > 0.0) || !(t <= 1e6)) return false;
+  ugv = std::stoi(a);
+  at_s = t;
+  return true;
+}
+
 bool parse_ablation(const std::string& s, Ablation& out) {
   for (Ablation a : {Ablation::kNone, Ablation::kNoRpe, Ablation::kNoUncertainty,
                      Ablation::kNoScheduling, Ablation::kNoTimeWindows}) {
@@ -131,6 +144,18 @@ bool check(const MissionConfig& cfg, std::string& error) {
   if (cfg.faults.uav_lost_id >= cfg.uavs)
     return fail("--uav-lost-id " + std::to_string(cfg.faults.uav_lost_id) + ": there are only " +
                 std::to_string(cfg.uavs) + " UAVs (0.." + std::to_string(cfg.uavs - 1) + ")");
+  const FaultConfig& f = cfg.faults;
+  if (f.kill_ugv >= 0 || f.kill_ugv_at_s >= 0.0 || f.restart_after_s >= 0.0) {
+    if (f.kill_ugv < 0) return fail("--restart-after: kill a UGV first (--kill-ugv I@T)");
+    if (!(f.kill_ugv_at_s > 0.0) || !std::isfinite(f.kill_ugv_at_s))
+      return fail("--kill-ugv: UGV I dies at T > 0 s (I@T)");
+    if (f.kill_ugv >= cfg.ugvs)
+      return fail("--kill-ugv " + std::to_string(f.kill_ugv) + ": there are only " +
+                  std::to_string(cfg.ugvs) + " UGVs (0.." + std::to_string(cfg.ugvs - 1) + ")");
+    if (!std::isfinite(f.restart_after_s))
+      return fail("--restart-after must be a number of seconds");
+    if (cfg.self_perception) return fail("--kill-ugv: not in the self-perception baseline");
+  }
   if (!cfg.placements.empty() && cfg.placements.size() != static_cast<std::size_t>(cfg.ugvs))
     return fail("a start and a goal for each of the " + std::to_string(cfg.ugvs) + " UGVs");
   for (const UgvPlacement& p : cfg.placements)

@@ -128,6 +128,11 @@ std::string to_json(const MissionOutcome& o, bool include_wall_time) {
     j["uav_lost_id"] =
         o.config.faults.uav_lost_id >= 0 ? o.config.faults.uav_lost_id : o.config.uavs - 1;
   }
+  if (o.config.faults.kill_ugv >= 0) {
+    const FaultConfig& f = o.config.faults;
+    j["kill_ugv"] = {{"id", f.kill_ugv}, {"at_s", f.kill_ugv_at_s}};
+    if (f.restart_after_s >= 0.0) j["kill_ugv"]["restart_after_s"] = f.restart_after_s;
+  }
   if (o.config.faults.any()) {
     const FaultConfig& f = o.config.faults;
     j["faults"] = {{"loss", f.loss},

@@ -178,7 +178,11 @@ bool load_scenario_file(const std::string& file, MissionConfig& cfg, std::string
   const YAML::Node faults = board::child(root, "faults");
   r.only(faults, "faults",
          {"loss_percent", "latency_ms", "jitter_ms", "blackout", "uav_blackout", "rpe_blackout",
-          "odom_bias_percent", "uav_lost_at_s", "uav_lost_id"});
+          "odom_bias_percent", "uav_lost_at_s", "uav_lost_id", "kill_ugv", "kill_ugv_at_s",
+          "restart_after_s"});
+  r.get(faults, "faults", "kill_ugv", c.faults.kill_ugv, 0, static_cast<int>(limits::kMaxUgvs) - 1);
+  r.get(faults, "faults", "kill_ugv_at_s", c.faults.kill_ugv_at_s, 0.0, 1e6);
+  r.get(faults, "faults", "restart_after_s", c.faults.restart_after_s, 0.0, 1e6);
   r.get(faults, "faults", "uav_lost_at_s", c.faults.uav_lost_at_s, 0.0, 1e6);
   r.get(faults, "faults", "uav_lost_id", c.faults.uav_lost_id, 0,
         static_cast<int>(limits::kMaxUavs) - 1);

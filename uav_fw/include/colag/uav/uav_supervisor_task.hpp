@@ -221,6 +221,10 @@ class UavSupervisorTask {
     Vec2 support = Vec2::Zero();
     Vec2 centre = Vec2::Zero();
     double radius = 0.0;
+    // A UGV that lost its estimate (its firmware restarted) asks us to where its mission starts;
+    // we look where we last knew it to be first, and there only until we hovered in vain.
+    bool at_last_fix = false;
+    bool last_fix_tried = false;
   };
   struct Ugv {
     bool known = false;
@@ -228,6 +232,10 @@ class UavSupervisorTask {
     TimePoint last_seen = kNever;  // last relative pose of it
     msg::UgvStatus status;
     TimePoint scout_rest_until{};  // its scouting points are not flown to before this
+    // Where its last status with an estimate put it (its position and heading).
+    bool fixed_before = false;
+    Vec2 last_fix = Vec2::Zero();
+    double last_fix_yaw_rad = 0.0;
   };
 
   Status init(TimePoint now);

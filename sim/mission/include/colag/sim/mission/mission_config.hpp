@@ -25,7 +25,8 @@ struct TimeWindow {
   bool contains(double t) const { return t >= from_s && t < to_s; }
   bool empty() const { return !(to_s > from_s); }
 };
-bool parse_window(const std::string& s, TimeWindow& out);  // "T0:T1" in seconds
+bool parse_window(const std::string& s, TimeWindow& out);       // "T0:T1" in seconds
+bool parse_kill(const std::string& s, int& ugv, double& at_s);  // "I@T": UGV I at T seconds
 
 // Fault injection: network faults on every topic of the loopback transport, outages of every
 // robot (every topic), of the UAV (all its topics) or of its relative poses alone, and a
@@ -45,6 +46,13 @@ struct FaultConfig {
   // UAV 0 is the time server: the others and the UGVs fly on with their last fleet time.
   double uav_lost_at_s = -1.0;
   int uav_lost_id = -1;
+  // UGV kill_ugv's firmware process dies at kill_ugv_at_s (< 0: never) and starts again from its
+  // configuration restart_after_s later (< 0: never), as `scripts/sitl.sh --kill-ugv I@T
+  // --restart-after S` does with ugv_fw: its readers, its state and its CAN socket go with the
+  // process; the world keeps its body where the base's watchdog stopped it.
+  int kill_ugv = -1;
+  double kill_ugv_at_s = -1.0;
+  double restart_after_s = -1.0;
   bool any() const {
     return loss > 0.0 || latency_ms > 0.0 || jitter_ms > 0.0 || !blackout.empty() ||
            !uav_blackout.empty() || !rpe_blackout.empty() || odom_bias != 0.0;
