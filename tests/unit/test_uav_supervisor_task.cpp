@@ -490,6 +490,36 @@ TEST(UavSupervisorTask, CirclesAUgvAgainstItsOwnEdgeFromOutsideItsBlindDisc) {
   EXPECT_LT(rig.distance_to(other + Vec2(0, 2)), 1.0);
 }
 
+// A UGV whose firmware restarted without a kept pose asks for its first relative pose where its
+// mission starts; it has not driven since we last knew where it was: the UAV looks there first,
+// and where it asks only once it hovered there in vain (it may have been carried away).
+TEST(UavSupervisorTask, ALostUgvIsSoughtWhereItWasLastKnownThenWhereItAsks) {
+  Rig rig;
+  const Vec2 last(6.0, -4.0), start(-6.0, 6.0);
+  rig.status(0, last);
+  rig.ex.run_until(rig.ex.now() + 300ms);
+  const auto lost = [&] {
+    rig.status(0, start, msg::UgvMode::kWaitingForInit);
+    rig.request(0, start, 0.0, false, start);
+  };
+  for (int i = 0; i < 12 && rig.distance_to(last) > 3.0; ++i) {
+    lost();
+    rig.ex.run_until(rig.ex.now() + 1s);
+  }
+  EXPECT_LT(rig.distance_to(last), 3.0);
+  EXPECT_GT(rig.distance_to(start), 10.0);
+  for (int i = 0; i < 30 && rig.uav->health().hover_timeouts == 0; ++i) {  // not found there
+    lost();
+    rig.ex.run_until(rig.ex.now() + 1s);
+  }
+  ASSERT_EQ(rig.uav->health().hover_timeouts, 1u);
+  for (int i = 0; i < 40 && rig.distance_to(start) > 3.0; ++i) {  // after the cooldown
+    lost();
+    rig.ex.run_until(rig.ex.now() + 1s);
+  }
+  EXPECT_LT(rig.distance_to(start), 3.0);
+}
+
 // Every UGV receives each UAV's odometry: 20 Hz (odometry_period), the newest sample each time,
 // from a 50 Hz source and control loop.
 TEST(UavSupervisorTask, SendsItsOdometryAtTwentyHertz) {

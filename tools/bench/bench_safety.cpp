@@ -26,6 +26,11 @@ const std::vector<FaultSetting>& settings() {
       {"all-blackout10s", {"--blackout", "20:30"}},
       {"rpe-blackout30s", {"--rpe-blackout", "15:45"}},
       {"odom-bias3%", {"--odom-bias", "3"}},
+      // Clocks an hour apart drifting 50 ppm, and fleet time (UAV 0's clock) stepping 2 s.
+      {"clocks1h+step2s",
+       {"--clock-offset-s", "3600", "--clock-drift-ppm", "50", "--clock-step", "30:2"}},
+      // UGV 1's firmware dies at 25 s and starts again 5 s later, knowing only its configuration.
+      {"ugv1-restart", {"--kill-ugv", "1@25", "--restart-after", "5"}},
   };
   return all;
 }
