@@ -29,8 +29,9 @@ const std::vector<FaultSetting>& settings() {
       // Clocks an hour apart drifting 50 ppm, and fleet time (UAV 0's clock) stepping 2 s.
       {"clocks1h+step2s",
        {"--clock-offset-s", "3600", "--clock-drift-ppm", "50", "--clock-step", "30:2"}},
-      // UGV 1's firmware dies at 25 s and starts again 5 s later, knowing only its configuration.
-      {"ugv1-restart", {"--kill-ugv", "1@25", "--restart-after", "5"}},
+      // UGV 0's firmware dies at 25 s and starts again 5 s later, knowing only its configuration
+      // (UGV 0: every fleet has one).
+      {"ugv0-restart", {"--kill-ugv", "0@25", "--restart-after", "5"}},
   };
   return all;
 }
