@@ -328,7 +328,7 @@ struct UgvStack {
   bool dead = false;
   double stood_dead_s = 0.0;
   std::array<double, ugv::kWaitParts> earlier_waiting_s{};
-  // Waiting so far across its processes, at mission time t (s per part).
+  // Waiting so far across its processes (s per part).
   std::array<double, ugv::kWaitParts> waiting_parts_s() const {
     std::array<double, ugv::kWaitParts> out = earlier_waiting_s;
     for (std::size_t k = 0; k < out.size(); ++k)
