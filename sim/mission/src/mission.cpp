@@ -336,6 +336,12 @@ struct UgvStack {
     out[static_cast<std::size_t>(ugv::WaitPart::kFault)] += stood_dead_s;
     return out;
   }
+  // Starts a firmware process: its CAN drivers on `can`, its task from `config` on the link.
+  void start_firmware(hal::CanBus& can, const hal::can::BaseConfig& protocol,
+                      const hal::can::WheelGeometry& wheels) {
+    base = std::make_unique<hal::can::CanBase>(can, protocol, wheels);
+    task = std::make_unique<ugv::UgvNavTask>(config, *link, base->odometry(), base->drive());
+  }
   // What the earlier processes waited, and this one while dead (s).
   double waited_before_s() const {
     double sum = stood_dead_s;
@@ -416,10 +422,8 @@ class UgvKillWatch final : public platform::Task {
     while (can.receive(frame)) {
     }
     const sim::UgvBodyConfig& body = world_.ugv(id_).config();
-    ugv_.base = std::make_unique<hal::can::CanBase>(can, body.base, body.geometry);
     ugv_.link->start();
-    ugv_.task = std::make_unique<ugv::UgvNavTask>(ugv_.config, *ugv_.link, ugv_.base->odometry(),
-                                                  ugv_.base->drive());
+    ugv_.start_firmware(can, body.base, body.geometry);
     ++ugv_.generation;
     ugv_.dead = false;
   }
@@ -612,12 +616,10 @@ std::unique_ptr<Mission> Mission::compose(const MissionConfig& cfg, std::string&
     nc.predictor.use_uncertainty = cfg.ablation != Ablation::kNoUncertainty;
     nc.predictor.horizon_m = cfg.predict_horizon_m;
     nc.map.unknown_blocks_prediction = !cfg.self_perception;
-    s.base =
-        std::make_unique<hal::can::CanBase>(p->world->ugv_can(i), wc.ugv.base, wc.ugv.geometry);
     s.outbox = std::make_unique<platform::LaneOutbox>(p->bus->port(static_cast<std::size_t>(i)));
     s.link = std::make_unique<RebootLink>(*s.outbox);
     s.config = nc;
-    s.task = std::make_unique<ugv::UgvNavTask>(nc, *s.link, s.base->odometry(), s.base->drive());
+    s.start_firmware(p->world->ugv_can(i), wc.ugv.base, wc.ugv.geometry);
     if (cfg.self_perception)
       s.perception =
           std::make_unique<SelfPerceptionTask>(*s.outbox, *p->world, i, beam_pattern_of(wc.lidar));

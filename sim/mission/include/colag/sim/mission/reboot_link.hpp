@@ -28,7 +28,6 @@ class RebootLink final : public platform::Transport {
   void kill();
   // The next process starts: its subscriptions take the relays over.
   void start() { alive_ = true; }
-  bool alive() const { return alive_; }
   std::size_t relays() const { return relays_.size(); }
 
  private:
