@@ -23,32 +23,54 @@ WorkerPool::~WorkerPool() {
 
 void WorkerPool::run(int parts, FunctionRef<void(int)> part) {
   if (parts <= 0) return;
-  if (threads_.empty() || parts == 1) {
+  const auto serial = [&] {
     for (int i = 0; i < parts; ++i)
       part(i);
-    return;
-  }
+  };
+  if (threads_.empty() || parts == 1) return serial();
   std::unique_lock lock(mutex_);
-  job_ = &part;
-  parts_ = parts;
-  next_ = 0;
-  finished_ = 0;
-  ++generation_;
+  Job* job = nullptr;
+  for (Job& j : jobs_) {
+    if (j.part == nullptr) {
+      job = &j;
+      break;
+    }
+  }
+  if (job == nullptr) {  // too deep: no one else could take these parts sooner than we do
+    lock.unlock();
+    return serial();
+  }
+  *job = {&part, parts, 0, 0, ++generation_};
   wake_.notify_all();
-  run_parts(lock);
-  done_.wait(lock, [&] { return finished_ == parts_; });
-  job_ = nullptr;
+  while (job->next < job->parts)
+    run_part(*job, job->next++, lock);
+  // Until the parts others took are done, help with any job in flight (a part of this one's
+  // parent, at the most, is one part late here).
+  while (job->finished != job->parts) {
+    if (Job* other = claimable(); other != nullptr) {
+      run_part(*other, other->next++, lock);
+    } else {
+      done_.wait(lock);
+    }
+  }
+  job->part = nullptr;
 }
 
-void WorkerPool::run_parts(std::unique_lock<std::mutex>& lock) {
-  while (job_ != nullptr && next_ < parts_) {
-    const int i = next_++;
-    const FunctionRef<void(int)>& part = *job_;
-    lock.unlock();
-    part(i);
-    lock.lock();
-    if (++finished_ == parts_) done_.notify_all();
+WorkerPool::Job* WorkerPool::claimable() {
+  Job* newest = nullptr;
+  for (Job& j : jobs_) {
+    if (j.part != nullptr && j.next < j.parts && (newest == nullptr || j.order > newest->order))
+      newest = &j;
   }
+  return newest;
+}
+
+void WorkerPool::run_part(Job& job, int i, std::unique_lock<std::mutex>& lock) {
+  const FunctionRef<void(int)> part = *job.part;
+  lock.unlock();
+  part(i);
+  lock.lock();
+  if (++job.finished == job.parts) done_.notify_all();
 }
 
 void WorkerPool::worker_main() {
@@ -68,8 +90,9 @@ void WorkerPool::worker_main() {
     std::unique_lock lock(mutex_);
     wake_.wait(lock, [&] { return stop_ || generation_.load() != seen; });
     if (stop_) return;
-    seen = generation_.load();
-    run_parts(lock);
+    for (Job* job = claimable(); job != nullptr; job = claimable())
+      run_part(*job, job->next++, lock);
+    seen = generation_.load();  // every job started so far has all its parts taken
   }
 }
 

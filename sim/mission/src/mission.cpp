@@ -628,11 +628,10 @@ std::unique_ptr<Mission> Mission::compose(const MissionConfig& cfg, std::string&
     p->flush.outboxes.push_back(s.outbox.get());
   p->ex->set_lanes(p->pool.get(), &p->flush);
 
-  // The robots' loops, each from its own schedule table: the UAV's, then each UGV's in its own
-  // lane. The UGVs plan at the same instants (each has its own computer: nothing keeps their
-  // loops apart, and the firmware must be safe when they line up), so the lanes plan side by
-  // side.
-  // Each on its robot's clock (the self-perception baseline's stand-ins: the UAV's).
+  // The robots' loops, each from its own schedule table: the UAVs' in one lane, then each
+  // UGV's in its own lane. The UGVs plan at the same instants (each has its own computer: nothing
+  // keeps their loops apart, and the firmware must be safe when they line up), so the lanes plan
+  // side by side. Each on its robot's clock (the self-perception baseline's stand-ins: the UAV's).
   const auto on_clock = [&p](platform::TaskEntry e, const sim::ClockModel& clock) {
     if (clock.identity()) return e;
     p->on_clocks.push_back(std::make_unique<OnRobotClock>(*e.task, clock));
@@ -663,8 +662,13 @@ std::unique_ptr<Mission> Mission::compose(const MissionConfig& cfg, std::string&
         cfg.faults);
     if (st) st = p->ex->add({p->ugv_kill.get(), UgvKillWatch::kPeriod, 1ms});
   }
+  if (p->reference && st) st = p->ex->add(on_clock({p->reference.get(), 20ms, 1ms}, p->clocks[0]));
+  // The UAVs share lane 1 (one after the other: they publish straight onto the bus, which no
+  // other lane touches until the barrier), so that a UAV's scan insertion runs beside the UGVs'
+  // planning rather than before it.
+  constexpr int kUavLane = 1;
   for (std::size_t k = 0; k < p->uavs.size() && st; ++k) {
-    auto rows = p->uavs[k]->rows();
+    auto rows = p->uavs[k]->rows(kUavLane);
     if (p->uav_loss && static_cast<int>(k) == lost) {
       for (platform::TaskEntry& e : rows) {  // the one that will die
         p->mortals.push_back(std::make_unique<Mortal>(*e.task, p->uav_loss->dead));
@@ -673,10 +677,9 @@ std::unique_ptr<Mission> Mission::compose(const MissionConfig& cfg, std::string&
     }
     st = add_rows(rows, p->clocks[uav_clock(cfg, static_cast<int>(k))]);
   }
-  if (p->reference && st) st = p->ex->add(on_clock({p->reference.get(), 20ms, 1ms}, p->clocks[0]));
   for (int i = 0; i < cfg.ugvs && st; ++i) {
     UgvStack& s = p->ugvs[static_cast<std::size_t>(i)];
-    const int lane = i + 1;
+    const int lane = kUavLane + 1 + i;
     std::array<platform::TaskEntry, 2> rows = s.task->rows(lane);
     for (std::size_t k = 0; k < rows.size(); ++k) {
       p->board_rows.push_back(std::make_unique<UgvBoardRow>(s, k, lane));

@@ -39,7 +39,7 @@ class ForkJoin {
   // How many parts can run at the same time (>= 1).
   virtual int concurrency() const = 0;
   // Runs part(0) .. part(parts - 1), possibly at the same time, and returns when all are done.
-  // Not reentrant: a part must not call run() again.
+  // A part may call run() again (nested parts may then run on any thread).
   virtual void run(int parts, FunctionRef<void(int)> part) = 0;
 };
 

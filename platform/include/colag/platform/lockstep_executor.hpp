@@ -35,8 +35,9 @@ class LockstepExecutor {
   Status add(const TaskEntry& entry) { return schedule_.add(entry); }
   Status add(std::span<const TaskEntry> entries) { return schedule_.add(entries); }
   Status init() { return schedule_.init(clock_.now()); }
-  // Lets lanes run at the same time on `fork_join` (optional; not owned; must not be used by
-  // a lane's tasks) and names who flushes their outboxes (optional; not owned).
+  // Lets lanes run at the same time on `fork_join` (optional; not owned; a lane's tasks may
+  // fork on it too when it allows nested runs, as WorkerPool does) and names who flushes their
+  // outboxes (optional; not owned).
   void set_lanes(ForkJoin* fork_join, LaneBarrier* barrier) {
     fork_join_ = fork_join;
     barrier_ = barrier;

@@ -7,6 +7,13 @@
 // claims the parts no one has started. But waking a sleeping thread takes long enough (~0.1 ms
 // on a virtual machine) that short jobs would run on the caller alone, so an idle worker first
 // spins for `spin` (a step that forks usually forks again soon), then sleeps.
+//
+// A part may call run() again (the simulator's lanes run robots side by side, and the UAV's
+// lane splits its scan insertion): the inner job joins the jobs in flight, its caller works on
+// it, and a thread that runs out of work takes a part of the newest job first (the one some
+// caller waits for). A caller only ever waits for parts already running, so nesting cannot
+// deadlock. Past kMaxJobs jobs in flight, run() runs the parts itself, one after the other.
+#include <array>
 #include <atomic>
 #include <condition_variable>
 #include <cstdint>
@@ -29,16 +36,24 @@ class WorkerPool final : public ForkJoin {
   int concurrency() const override { return static_cast<int>(threads_.size()) + 1; }
   void run(int parts, FunctionRef<void(int)> part) override;
 
+  static constexpr std::size_t kMaxJobs = 8;  // in flight at once (nested or from other threads)
+
  private:
+  struct Job {
+    const FunctionRef<void(int)>* part = nullptr;  // nullptr: a free slot
+    int parts = 0, next = 0, finished = 0;
+    std::uint64_t order = 0;  // when it started: the newest is served first
+  };
   void worker_main();
-  // Claims and runs parts of the current job until none is left; `lock` is held on entry and exit.
-  void run_parts(std::unique_lock<std::mutex>& lock);
+  // The newest job with a part no one has started, or nullptr; under the lock.
+  Job* claimable();
+  // Runs part `i` of `job` (claimed under the lock); `lock` is held on entry and exit.
+  void run_part(Job& job, int i, std::unique_lock<std::mutex>& lock);
 
   std::mutex mutex_;
   std::condition_variable wake_;  // a new job, or stop
   std::condition_variable done_;  // the last part of a job finished, or a worker started
-  const FunctionRef<void(int)>* job_ = nullptr;
-  int parts_ = 0, next_ = 0, finished_ = 0;
+  std::array<Job, kMaxJobs> jobs_{};
   int started_ = 0;                           // workers running
   std::atomic<std::uint64_t> generation_{0};  // one more per job (written under the mutex)
   Duration spin_;
