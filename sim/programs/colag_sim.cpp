@@ -52,6 +52,11 @@ void print_table(const mission::MissionOutcome& o) {
                 static_cast<int>(o.ugvs.size()) - o.reach_missing, o.reach_missing);
   std::printf("  UGV waiting time    %8.2f s (max %.2f s; stood still before its goal)\n",
               o.waiting_time_s, o.max_waiting_time_s);
+  const auto& c = o.support_causes_s;
+  std::printf(
+      "  waiting for support: %.1f s unknown ground, %.1f s near obstacles, %.1f s "
+      "uncertain now, %.1f s goal fix\n",
+      c[0], c[1], c[2], c[3]);
   std::printf("  estimator NEES      %8.2f (3 when its covariance is honest)\n", o.nees_mean);
   std::printf("  UGV traj. length    %8.2f m\n", o.ugv_traj_length_m);
   std::printf("  UAV traj. length    %8.2f m\n", o.uav_traj_length_m);

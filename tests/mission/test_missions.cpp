@@ -70,6 +70,13 @@ TEST(Mission, DenseFiveUgvsAllReachWithoutCollision) {
     for (double p : u.waiting_parts)
       parts += p;
     EXPECT_NEAR(parts, u.waiting_time_s, 1e-6) << "UGV " << u.id;
+    // The support part, by what it called the UAV for, adds up too.
+    double causes = 0.0;
+    for (double c : u.support_causes)
+      causes += c;
+    EXPECT_NEAR(causes, u.waiting_parts[static_cast<std::size_t>(colag::ugv::WaitPart::kSupport)],
+                1e-6)
+        << "UGV " << u.id;
     EXPECT_NEAR(u.waiting_time_s, u.stopped_s, 0.1 * (u.stops + 1) + 0.5) << "UGV " << u.id;
     EXPECT_GT(u.stops, 0) << "UGV " << u.id;  // it did wait for the UAV at least at start
     // Its covariance is honest in the world whose noise it models (3 dof: 3 expected).

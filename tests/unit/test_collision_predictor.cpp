@@ -63,6 +63,7 @@ TEST(CollisionPredictor, MeanOnlyHitsWhereTheInflatedUnknownBegins) {
   predictor.predict_pose({Vec2(0, 0.05), 0.0}, Mat3::Identity(), straight_trajectory(), 0, *map, {},
                          p);
   ASSERT_EQ(p.kind, CollisionKind::kMap);
+  EXPECT_EQ(p.cause, MapCause::kUnknownGround);
   // At 0.5 m/s the centre reaches x = 2.7 at t = 5.4 s (a multiple of the 0.2 s step).
   EXPECT_NEAR(p.time_s, 5.4, 1e-9);
   EXPECT_NEAR(p.point.x(), 2.7, 1e-6);
@@ -173,6 +174,7 @@ TEST(CollisionPredictor, ARobotAlreadyInsideTheInflationMayLeaveButNotGoCloser) 
   predictor.predict_pose({here, 0.0}, Mat3::Identity() * 1e-4, line(here, Vec2(5.0, 0.05)), 0, *map,
                          {}, p);
   ASSERT_EQ(p.kind, CollisionKind::kMap) << "driving towards it must not be";
+  EXPECT_EQ(p.cause, MapCause::kNearObstacle);
   EXPECT_LE(p.time_s, 0.6);
   // Sliding along the box face while edging away is allowed (exactly sideways is not: the
   // ellipse grows, so its worst case comes closer); angling in is not.
@@ -261,6 +263,41 @@ TEST(CollisionPredictor, AnEllipseReachingIntoAWallNowMayNotDriveOnBesideIt) {
 
 // The UAV's odometry frame wanders along the horizon as it does now (the estimator's frame
 // walk): with exact wheels and a known pose, the ellipse k steps ahead has variance walk^2 t.
+// Why a UGV calls the UAV (the waiting's support part is reported by cause): ground not known
+// yet, a known obstacle its growing ellipse would come closer to, or an ellipse that already
+// overlaps more blocked cells than the predictor can excuse.
+TEST(CollisionPredictor, SaysWhyTheMapBlocksTheWay) {
+  PredictorConfig cfg;
+  cfg.horizon_m = 10.0;
+  CollisionPredictor predictor(cfg, forward_noise_only());
+  Prediction p;
+  auto unknown = map_with_unknown_ahead();
+  predictor.predict_pose({Vec2(0, 0.05), 0.0}, Mat3::Identity() * 1e-4, straight_trajectory(), 0,
+                         *unknown, {}, p);
+  ASSERT_EQ(p.kind, CollisionKind::kMap);
+  EXPECT_EQ(p.cause, MapCause::kUnknownGround);
+  // Sigma 3 m now: its 9 m ellipse covers thousands of blocked cells of the unknown ground.
+  predictor.predict_pose({Vec2(0, 0.05), 0.0}, Mat3::Identity() * 9.0, straight_trajectory(), 0,
+                         *unknown, {}, p);
+  ASSERT_EQ(p.kind, CollisionKind::kMap);
+  EXPECT_EQ(p.cause, MapCause::kUncertainNow);
+  EXPECT_EQ(p.time_s, 0.0);
+  // Known ground, a box beside the path at y = 0.7: exact, the robot passes it; with sigma
+  // 0.1 m growing along the way, its worst case comes closer to the box than now.
+  auto box = std::make_unique<MapStore>();
+  ASSERT_TRUE(test::fill_map(*box, -3, -3, 13, 3, [](const Vec2& q) {
+    return q.x() > 3.0 && q.x() < 3.5 && q.y() > 0.7 && q.y() < 1.2 ? CellState::kOccupied
+                                                                    : CellState::kFree;
+  }));
+  predictor.predict_pose({Vec2(0, 0.05), 0.0}, Mat3::Zero(), straight_trajectory(), 0, *box, {}, p);
+  EXPECT_EQ(p.kind, CollisionKind::kNone);
+  EXPECT_EQ(p.cause, MapCause::kNone);
+  predictor.predict_pose({Vec2(0, 0.05), 0.0}, Mat3::Identity() * 0.01, straight_trajectory(), 0,
+                         *box, {}, p);
+  ASSERT_EQ(p.kind, CollisionKind::kMap);
+  EXPECT_EQ(p.cause, MapCause::kNearObstacle);
+}
+
 TEST(CollisionPredictor, TheFramesWanderGrowsTheEllipsesAhead) {
   auto map = std::make_unique<MapStore>();
   ASSERT_TRUE(test::fill_map(*map, -3, -3, 13, 3, [](const Vec2&) { return CellState::kFree; }));

@@ -7,10 +7,11 @@ namespace colag::ugv {
 
 CollisionKind CollisionPredictor::check(const Ellipse& e, double t, const MapStore& map,
                                         std::span<const OtherRobot> others,
-                                        double closest_allowed_m) const {
+                                        double closest_allowed_m, MapCause& cause) const {
   const auto& g = map.geometry();
   // Outside the grid counts as unknown, hence blocked.
   const double reach = std::sqrt(std::max(e.M(0, 0), e.M(1, 1)));
+  cause = MapCause::kUnknownGround;
   if (!g.contains(Vec2(e.center + Vec2(reach, reach))) ||
       !g.contains(Vec2(e.center - Vec2(reach, reach)))) {
     return CollisionKind::kMap;
@@ -31,6 +32,7 @@ CollisionKind CollisionPredictor::check(const Ellipse& e, double t, const MapSto
   const double a = (near_occupied || !others.empty()) ? e.axes().a_m : 0.0;
   // Known obstacles: never closer (in the worst case of the ellipse) than the robot is now.
   if (near_occupied && map.occupied_distance(e.center, kDistanceSearch_m) - a < closest_allowed_m) {
+    cause = MapCause::kNearObstacle;
     return CollisionKind::kMap;
   }
   for (std::size_t k = 0; k < others.size(); ++k) {
@@ -58,6 +60,7 @@ void CollisionPredictor::predict(const UgvStateVec& state, const UgvStateCov& co
                                  const Trajectory& traj, std::size_t progress, const MapStore& map,
                                  std::span<const OtherRobot> others, Prediction& out) {
   out.kind = CollisionKind::kNone;
+  out.cause = MapCause::kNone;
   out.ellipses.clear();
   const double k = config_.use_uncertainty ? config_.k_sigma : 0.0;
   UgvStateCov P = config_.use_uncertainty ? covariance : UgvStateCov::Zero();
@@ -97,10 +100,12 @@ void CollisionPredictor::predict(const UgvStateVec& state, const UgvStateCov& co
   const auto test = [&](const Vec2& centre, double t, double heading) {
     const Ellipse e = sigma_ellipse(centre + shift, P.topLeftCorner<2, 2>(), k).grown(grow);
     (void)out.ellipses.push_back(e);
+    MapCause cause = MapCause::kUncertainNow;
     const CollisionKind kind =
-        overflow ? CollisionKind::kMap : check(e, t, map, others, closest_allowed);
+        overflow ? CollisionKind::kMap : check(e, t, map, others, closest_allowed, cause);
     if (kind == CollisionKind::kNone) return false;
     out.kind = kind;
+    out.cause = kind == CollisionKind::kMap ? cause : MapCause::kNone;
     out.point = centre;
     out.time_s = t;
     out.support_point =

@@ -95,6 +95,8 @@ void UgvNavTask::control_step(TimePoint now) {
     const WaitPart part = wait_part(mode_, blocked_reason_, health_.plans > health_.plan_failures,
                                     !trajectory_.empty());
     waiting_parts_[static_cast<std::size_t>(part)] += seconds(dt);
+    if (part == WaitPart::kSupport)
+      support_causes_[static_cast<std::size_t>(support_cause_)] += seconds(dt);
   }
 }
 
@@ -499,6 +501,10 @@ void UgvNavTask::predict_and_request(TimePoint now) {
   const bool was_stopped = stopped_for_support_ || stopped_for_robot_;
   switch (prediction_.kind) {
     case CollisionKind::kMap:
+      support_cause_ = prediction_.cause == MapCause::kNearObstacle ? SupportCause::kNearObstacle
+                       : prediction_.cause == MapCause::kUncertainNow
+                           ? SupportCause::kUncertainNow
+                           : SupportCause::kUnknownGround;
       need.needed = true;
       need.collision_point = prediction_.point;
       need.support_point = prediction_.support_point;
@@ -519,6 +525,7 @@ void UgvNavTask::predict_and_request(TimePoint now) {
   }
   if (was_stopped && !stopped_for_support_ && !stopped_for_robot_) replan_requested_ = true;
   if (awaiting_fix_) {  // the UAV to come to the goal and see it there
+    support_cause_ = SupportCause::kGoalFix;
     need.needed = true;
     need.collision_point = goal_;
     need.support_point = ekf_.pose().p;

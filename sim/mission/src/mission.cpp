@@ -328,12 +328,19 @@ struct UgvStack {
   bool dead = false;
   double stood_dead_s = 0.0;
   std::array<double, ugv::kWaitParts> earlier_waiting_s{};
-  // Waiting so far across its processes (s per part).
+  std::array<double, ugv::kSupportCauses> earlier_support_s{};
+  // Waiting so far across its processes (s per part; the support part by cause).
   std::array<double, ugv::kWaitParts> waiting_parts_s() const {
     std::array<double, ugv::kWaitParts> out = earlier_waiting_s;
     for (std::size_t k = 0; k < out.size(); ++k)
       out[k] += to_seconds(task->waiting_parts()[k]);
     out[static_cast<std::size_t>(ugv::WaitPart::kFault)] += stood_dead_s;
+    return out;
+  }
+  std::array<double, ugv::kSupportCauses> support_causes_s() const {
+    std::array<double, ugv::kSupportCauses> out = earlier_support_s;
+    for (std::size_t k = 0; k < out.size(); ++k)
+      out[k] += to_seconds(task->support_causes()[k]);
     return out;
   }
   // Starts a firmware process: its CAN drivers on `can`, its task from `config` on the link.
@@ -414,6 +421,7 @@ class UgvKillWatch final : public platform::Task {
  private:
   void restart() {
     ugv_.earlier_waiting_s = ugv_.waiting_parts_s();
+    ugv_.earlier_support_s = ugv_.support_causes_s();
     ugv_.stood_dead_s = 0.0;
     ugv_.task.reset();
     ugv_.base.reset();
@@ -771,6 +779,7 @@ void Mission::fly(MissionTrace* trace, MissionWatcher* watcher) {
       o.waiting_time_s = task.waiting_time_s() + ugvs[i].waited_before_s();
       for (std::size_t k = 0; k < ugv::kWaitParts; ++k)
         o.waiting_parts[k] = parts[k];
+      o.support_causes = ugvs[i].support_causes_s();
       if (mode == msg::UgvMode::kBlocked) {
         o.blocked_s += 0.1;
         o.blocked_reason = task.blocked_reason();

@@ -106,6 +106,8 @@ void summarise(const sim::SimWorld& world, MissionOutcome& out) {
     }
     out.waiting_time_s += o.stopped_s / n;
     out.max_waiting_time_s = std::max(out.max_waiting_time_s, o.stopped_s);
+    for (std::size_t k = 0; k < ugv::kSupportCauses; ++k)
+      out.support_causes_s[k] += o.support_causes[k] / n;
     out.nees_mean += o.nees_mean / n;
     out.bytes_in_per_ugv_per_s += o.bytes_in_per_s / n;
     for (std::size_t k = 0; k < msg::kTopicCount; ++k)
@@ -118,6 +120,15 @@ void summarise(const sim::SimWorld& world, MissionOutcome& out) {
   out.all_reached = reached == static_cast<int>(out.ugvs.size());
   out.collisions = static_cast<int>(world.collisions().size());
 }
+
+namespace {
+nlohmann::ordered_json support_causes(const std::array<double, ugv::kSupportCauses>& s) {
+  nlohmann::ordered_json j;
+  for (std::size_t k = 0; k < ugv::kSupportCauses; ++k)
+    j[ugv::to_string(static_cast<ugv::SupportCause>(k))] = s[k];
+  return j;
+}
+}  // namespace
 
 std::string to_json(const MissionOutcome& o, bool include_wall_time) {
   nlohmann::ordered_json j;
@@ -170,6 +181,7 @@ std::string to_json(const MissionOutcome& o, bool include_wall_time) {
     for (std::size_t k = 0; k < ugv::kWaitParts; ++k)
       parts[ugv::to_string(static_cast<ugv::WaitPart>(k))] = u.waiting_parts[k];
     ju["waiting_parts"] = parts;
+    ju["support_causes"] = support_causes(u.support_causes);
     ju["nees_mean"] = u.nees_mean;
     nlohmann::ordered_json cal;
     const char* const cal_names[kCalibrationDim] = {"scale", "turn_scale", "drift_per_m",
@@ -211,6 +223,7 @@ std::string to_json(const MissionOutcome& o, bool include_wall_time) {
   s["reach_missing"] = o.reach_missing;
   s["waiting_time_s"] = o.waiting_time_s;
   s["max_waiting_time_s"] = o.max_waiting_time_s;
+  s["support_causes_s"] = support_causes(o.support_causes_s);
   s["ugv_traj_length_m"] = o.ugv_traj_length_m;
   s["uav_traj_length_m"] = o.uav_traj_length_m;
   if (o.config.uavs > 1) s["uav_min_separation_m"] = o.uav_min_separation_m;

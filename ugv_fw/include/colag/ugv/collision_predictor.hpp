@@ -44,9 +44,14 @@ struct OtherRobot {
 };
 
 enum class CollisionKind : std::uint8_t { kNone, kMap, kRobot };
+// Why a map collision was predicted: the ellipse meets ground not known yet (or leaves the map),
+// comes closer to a known obstacle than the robot's worst case is now, or the ellipse now is
+// already too uncertain for the obstacles it overlaps.
+enum class MapCause : std::uint8_t { kNone, kUnknownGround, kNearObstacle, kUncertainNow };
 
 struct Prediction {
   CollisionKind kind = CollisionKind::kNone;
+  MapCause cause = MapCause::kNone;                             // for kMap
   Vec2 point = Vec2::Zero();                                    // p_pc
   Vec2 support_point = Vec2::Zero();                            // p_ps
   double time_s = 0.0;                                          // t_pc from now
@@ -86,8 +91,10 @@ class CollisionPredictor {
   // Which obstacle, if any, the ellipse touches: a blocked cell not in excused_ that is near
   // unknown, or near occupied with the ellipse closer than `closest_allowed_m` to it; or another
   // robot's disc, entered (or, already overlapping now, entered deeper than now).
+  // `cause`: why, for a kMap.
   CollisionKind check(const Ellipse& e, double t, const MapStore& map,
-                      std::span<const OtherRobot> others, double closest_allowed_m) const;
+                      std::span<const OtherRobot> others, double closest_allowed_m,
+                      MapCause& cause) const;
 
   static constexpr std::size_t kMaxExcused = 8192;
   static constexpr double kDistanceSearch_m = 1.0;

@@ -139,8 +139,9 @@ class UgvNavTask {
       sum += d;
     return to_seconds(sum);
   }
-  const WaitingParts& waiting_parts() const { return waiting_parts_; }   // summing to it
-  msg::BlockedReason blocked_reason() const { return blocked_reason_; }  // with kBlocked
+  const WaitingParts& waiting_parts() const { return waiting_parts_; }     // summing to it
+  const SupportCauses& support_causes() const { return support_causes_; }  // the support part's
+  msg::BlockedReason blocked_reason() const { return blocked_reason_; }    // with kBlocked
   bool requesting_support() const { return support_.requesting(); }
   const UgvNavConfig& config() const { return config_; }
   // Drives to `goal` (world frame) from now on, unless it is refused: not finite, outside the
@@ -271,6 +272,8 @@ class UgvNavTask {
   TimePoint last_control_{};
   TimePoint last_plan_{};
   WaitingParts waiting_parts_{};
+  SupportCauses support_causes_{};
+  SupportCause support_cause_ = SupportCause::kUnknownGround;  // the latest (see waiting.hpp)
   double cross_track_m_ = 0.0;
   double recent_3sigma_m_ = 0.0;  // the largest 3-sigma lately (fading): the planner's clearance
   double v_cmd_ = 0.0;

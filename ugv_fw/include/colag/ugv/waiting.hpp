@@ -90,4 +90,32 @@ constexpr WaitPart wait_part(msg::UgvMode mode, msg::BlockedReason why, bool pla
 
 using WaitingParts = std::array<Duration, kWaitParts>;
 
+// The support part, by what the UGV called the UAV for: ground its map does not know yet, its
+// estimate too uncertain for the known obstacles along its path (or, already now, for those
+// beside it), or a last fix at its goal. Waiting for support is put under the latest cause the
+// collision prediction gave (before any, ground not known: the UAV has mapped nothing there).
+enum class SupportCause : std::uint8_t {
+  kUnknownGround,
+  kNearObstacle,
+  kUncertainNow,
+  kGoalFix,
+};
+inline constexpr std::size_t kSupportCauses = 4;
+
+inline const char* to_string(SupportCause c) {
+  switch (c) {
+    case SupportCause::kUnknownGround:
+      return "unknown_ground";
+    case SupportCause::kNearObstacle:
+      return "near_obstacle";
+    case SupportCause::kUncertainNow:
+      return "uncertain_now";
+    case SupportCause::kGoalFix:
+      return "goal_fix";
+  }
+  return "unknown";
+}
+
+using SupportCauses = std::array<Duration, kSupportCauses>;
+
 }  // namespace colag::ugv

@@ -32,6 +32,8 @@ struct UgvOutcome {
   // period per stop (the robot brakes and starts within one).
   double waiting_time_s = 0.0;
   std::array<double, ugv::kWaitParts> waiting_parts{};
+  // The support part by what the UGV called the UAV for (see ugv/waiting.hpp), summing to it.
+  std::array<double, ugv::kSupportCauses> support_causes{};
   // Mean normalised estimation error squared of its (x, y, yaw) estimate against the truth,
   // sampled every 100 ms from its first relative pose to its arrival: 3 when the estimator's
   // covariance is honest, far more when it is over-confident.
@@ -94,6 +96,7 @@ struct MissionOutcome {
   int reach_missing = 0;
   double waiting_time_s = 0.0;
   double max_waiting_time_s = 0.0;
+  std::array<double, ugv::kSupportCauses> support_causes_s{};  // mean per UGV, by cause
   double nees_mean = 0.0;               // the mean over the UGVs of their nees_mean
   double bytes_in_per_ugv_per_s = 0.0;  // the mean over the UGVs of their bytes_in_per_s
   std::array<double, msg::kTopicCount> bytes_in_per_ugv_by_topic_per_s{};  // the same, by topic
