@@ -86,19 +86,23 @@ TEST_F(ScheduleTables, TheLockstepMissionRunsEachRobotFromItsTableInItsLane) {
   const ugv::UgvSchedule ugv_table;
   const uav::UavSchedule uav_table;
   // The simulation's own rows (the shared network, the world, the ground truth's watch of who
-  // stands still) and then the robots'.
+  // stands still: lane 0, run first), then the robots': the UAV's in lane 1, each UGV's in a
+  // lane of its own, all of them side by side.
   const std::vector<Row> rows = rows_of(m->executor().schedule());
   ASSERT_EQ(rows.size(), 3u + 4u + 2u * 2u);
-  EXPECT_EQ(rows[0].name, "transport");
+  expect_row(rows[0], "transport", {std::chrono::milliseconds(10), std::chrono::milliseconds(2)},
+             0);
   EXPECT_EQ(rows[1].name, "world");
+  EXPECT_EQ(rows[1].lane, 0);
   EXPECT_EQ(rows[2].name, "still_watch");
-  expect_row(rows[3], "uav_control", uav_table.control, 0);
-  expect_row(rows[4], "uav_mapping", uav_table.mapping, 0);
-  expect_row(rows[5], "uav_sharing", uav_table.sharing, 0);
-  expect_row(rows[6], "uav_scheduling", uav_table.scheduling, 0);
+  EXPECT_EQ(rows[2].lane, 0);
+  expect_row(rows[3], "uav_control", uav_table.control, 1);
+  expect_row(rows[4], "uav_mapping", uav_table.mapping, 1);
+  expect_row(rows[5], "uav_sharing", uav_table.sharing, 1);
+  expect_row(rows[6], "uav_scheduling", uav_table.scheduling, 1);
   for (int i = 0; i < 2; ++i) {
-    expect_row(rows[7 + 2 * i], "ugv_control", ugv_table.control, i + 1);
-    expect_row(rows[8 + 2 * i], "ugv_planning", ugv_table.planning, i + 1);
+    expect_row(rows[7 + 2 * i], "ugv_control", ugv_table.control, i + 2);
+    expect_row(rows[8 + 2 * i], "ugv_planning", ugv_table.planning, i + 2);
   }
 }
 
