@@ -194,14 +194,22 @@ FlightStatus Px4FlightController::update(TimePoint now) {
   }
   Px4Command c;
   if (seq_.step(now, c)) send_command(c);
-  if (seq_.streaming(now) && elapsed(now, last_heartbeat_, config_.heartbeat_period)) {
+  const bool streaming = seq_.streaming(now);
+  if (streaming && elapsed(now, last_heartbeat_, config_.heartbeat_period)) {
     last_heartbeat_ = now;
     {
       const std::lock_guard lock(outbox_.mutex);
       outbox_.heartbeat_due = true;
     }
     outbox_.wake.notify_one();
+  } else if (!streaming && was_streaming_) {
+    // The stream ends now: a heartbeat or setpoint the writer has not taken yet stays unsent,
+    // so PX4's own failsafe is not held off by one more message.
+    const std::lock_guard lock(outbox_.mutex);
+    outbox_.heartbeat_due = false;
+    outbox_.setpoint_due = false;
   }
+  was_streaming_ = streaming;
   report();
   return seq_.status();
 }

@@ -103,6 +103,7 @@ class Px4FlightController final : public FlightController, public OdometrySource
   dds_entity_t publications_ = 0;  // the bus's writers, to name a release mismatch
   OffboardSequencer seq_;
   TimePoint last_heartbeat_ = kNever;
+  bool was_streaming_ = false;
   TimePoint last_release_check_ = kNever;
   UavState odometry_;
   bool odometry_fresh_ = false;
