@@ -21,6 +21,7 @@
 #include "colag/sim/recording/mcap_recorder.hpp"
 #include "colag/sim/scenario_options.hpp"
 #include "colag/sim/world/pcd_writer.hpp"
+#include "colag/ugv/waiting.hpp"
 
 using namespace colag;
 
@@ -52,11 +53,11 @@ void print_table(const mission::MissionOutcome& o) {
                 static_cast<int>(o.ugvs.size()) - o.reach_missing, o.reach_missing);
   std::printf("  UGV waiting time    %8.2f s (max %.2f s; stood still before its goal)\n",
               o.waiting_time_s, o.max_waiting_time_s);
-  const auto& c = o.support_causes_s;
-  std::printf(
-      "  waiting for support: %.1f s unknown ground, %.1f s near obstacles, %.1f s "
-      "uncertain now, %.1f s goal fix\n",
-      c[0], c[1], c[2], c[3]);
+  std::printf("  waiting for support:");
+  for (std::size_t k = 0; k < ugv::kSupportCauses; ++k)
+    std::printf("%s %.1f s %s", k == 0 ? "" : ",", o.support_causes_s[k],
+                ugv::to_string(static_cast<ugv::SupportCause>(k)));
+  std::printf("\n");
   std::printf("  estimator NEES      %8.2f (3 when its covariance is honest)\n", o.nees_mean);
   std::printf("  UGV traj. length    %8.2f m\n", o.ugv_traj_length_m);
   std::printf("  UAV traj. length    %8.2f m\n", o.uav_traj_length_m);

@@ -33,6 +33,20 @@ bool plausible(const msg::NearbyUgv& u) {
              static_cast<unsigned>(msg::EnumRange<msg::UgvMode>::kLast);
 }
 
+// What the UGV calls the UAV for when the map blocks its way.
+SupportCause support_cause_of(MapCause cause) {
+  switch (cause) {
+    case MapCause::kNearObstacle:
+      return SupportCause::kNearObstacle;
+    case MapCause::kUncertainNow:
+      return SupportCause::kUncertainNow;
+    case MapCause::kNone:
+    case MapCause::kUnknownGround:
+      break;
+  }
+  return SupportCause::kUnknownGround;
+}
+
 }  // namespace
 
 UgvNavTask::UgvNavTask(const UgvNavConfig& config, platform::Transport& transport,
@@ -501,10 +515,7 @@ void UgvNavTask::predict_and_request(TimePoint now) {
   const bool was_stopped = stopped_for_support_ || stopped_for_robot_;
   switch (prediction_.kind) {
     case CollisionKind::kMap:
-      support_cause_ = prediction_.cause == MapCause::kNearObstacle ? SupportCause::kNearObstacle
-                       : prediction_.cause == MapCause::kUncertainNow
-                           ? SupportCause::kUncertainNow
-                           : SupportCause::kUnknownGround;
+      support_cause_ = support_cause_of(prediction_.cause);
       need.needed = true;
       need.collision_point = prediction_.point;
       need.support_point = prediction_.support_point;

@@ -331,17 +331,19 @@ struct UgvStack {
   std::array<double, ugv::kSupportCauses> earlier_support_s{};
   // Waiting so far across its processes (s per part; the support part by cause).
   std::array<double, ugv::kWaitParts> waiting_parts_s() const {
-    std::array<double, ugv::kWaitParts> out = earlier_waiting_s;
-    for (std::size_t k = 0; k < out.size(); ++k)
-      out[k] += to_seconds(task->waiting_parts()[k]);
+    std::array<double, ugv::kWaitParts> out = plus(earlier_waiting_s, task->waiting_parts());
     out[static_cast<std::size_t>(ugv::WaitPart::kFault)] += stood_dead_s;
     return out;
   }
   std::array<double, ugv::kSupportCauses> support_causes_s() const {
-    std::array<double, ugv::kSupportCauses> out = earlier_support_s;
-    for (std::size_t k = 0; k < out.size(); ++k)
-      out[k] += to_seconds(task->support_causes()[k]);
-    return out;
+    return plus(earlier_support_s, task->support_causes());
+  }
+  template <std::size_t N>
+  static std::array<double, N> plus(std::array<double, N> earlier,
+                                    const std::array<Duration, N>& now) {
+    for (std::size_t k = 0; k < N; ++k)
+      earlier[k] += to_seconds(now[k]);
+    return earlier;
   }
   // Starts a firmware process: its CAN drivers on `can`, its task from `config` on the link.
   void start_firmware(hal::CanBus& can, const hal::can::BaseConfig& protocol,
