@@ -31,51 +31,10 @@ class SimWorld::ScanDevice final : public hal::Lidar {
   }
 
  private:
-  // Each return off along its ray; some lost (a real driver does not report them). Two random
-  // draws a return, ~14 000 returns a scan: in fixed chunks, each drawing from its own stream
-  // (seeded by the device, the scan and the chunk), so that they run on every core and the
-  // scan is the same whatever the number of cores.
+  // Each return off along its ray; some lost (lidar_errors.hpp).
   void add_errors() {
-    constexpr int kChunks = 8;
-    const std::size_t n = std::min(points_.size(), noisy_.size());
-    std::array<std::size_t, kChunks + 1> first{};  // chunk c: returns [first[c], first[c + 1])
-    for (std::size_t c = 0; c <= kChunks; ++c)
-      first[c] = n * c / kChunks;
-    std::array<std::size_t, kChunks> kept{};
-    ++scans_;
-    const auto chunk = [&](int c) {
-      const std::size_t from = first[static_cast<std::size_t>(c)];
-      const std::size_t to = first[static_cast<std::size_t>(c) + 1];
-      Rng rng(seed_ * 0x9E3779B97F4A7C15ULL + scans_ * kChunks + static_cast<std::uint64_t>(c));
-      std::size_t out = from;
-      for (std::size_t k = from; k < to; ++k) {
-        const hal::LidarPoint& q = points_[k];
-        if (errors_.dropout > 0.0 && rng.bernoulli(errors_.dropout)) continue;
-        const double r =
-            std::sqrt(double{q.x_m} * q.x_m + double{q.y_m} * q.y_m + double{q.z_m} * q.z_m);
-        const double noise =
-            errors_.range_sigma_m > 0.0 ? rng.gaussian(0.0, errors_.range_sigma_m) : 0.0;
-        const auto f = static_cast<float>(r > 0.0 ? std::max(r + noise, 0.0) / r : 1.0);
-        noisy_[out++] = {q.x_m * f, q.y_m * f, q.z_m * f};
-      }
-      kept[static_cast<std::size_t>(c)] = out - from;
-    };
-    if (fork_join_ != nullptr) {
-      fork_join_->run(kChunks, chunk);
-    } else {
-      for (int c = 0; c < kChunks; ++c)
-        chunk(c);
-    }
-    std::size_t total = 0;  // the chunks' returns, closed up in scan order
-    for (std::size_t c = 0; c < kChunks; ++c) {
-      // Moved down (or not at all: std::copy may not copy a range onto itself).
-      if (total != first[c]) {
-        std::copy_n(noisy_.begin() + static_cast<std::ptrdiff_t>(first[c]), kept[c],
-                    noisy_.begin() + static_cast<std::ptrdiff_t>(total));
-      }
-      total += kept[c];
-    }
-    points_ = std::span<const hal::LidarPoint>(noisy_.data(), total);
+    const std::size_t n = add_lidar_errors(errors_, seed_, ++scans_, points_, noisy_, fork_join_);
+    points_ = std::span<const hal::LidarPoint>(noisy_.data(), n);
     if (errors_.returns_only) misses_ = {};
   }
 

@@ -18,6 +18,7 @@
 #include "colag/hal/relative_pose_sensor.hpp"
 #include "colag/hal/sim/can_link.hpp"
 #include "colag/sim/world/box_world.hpp"
+#include "colag/sim/world/lidar_errors.hpp"
 #include "colag/sim/world/lidar_simulator.hpp"
 #include "colag/sim/world/robot_clock.hpp"
 #include "colag/sim/world/uav_body.hpp"
@@ -42,14 +43,6 @@ struct CameraConfig {
   double true_sigma_scale = 1.0;  // true error sigma = this x the reported sigma
   Duration latency{};             // capture to delivery
   Duration jitter{};              // + uniform 0..jitter
-};
-
-// The field world's LiDAR: range noise, lost returns.
-struct LidarErrors {
-  double range_sigma_m = 0.0;
-  double dropout = 0.0;
-  bool returns_only = false;  // as a real driver: no list of the beams that saw nothing
-  bool any() const { return range_sigma_m > 0.0 || dropout > 0.0 || returns_only; }
 };
 
 struct SimWorldConfig {
