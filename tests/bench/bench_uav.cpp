@@ -14,6 +14,7 @@
 #include "colag/platform/worker_pool.hpp"
 #include "colag/sim/world/lidar_errors.hpp"
 #include "colag/sim/world/lidar_simulator.hpp"
+#include "colag/sim/world/world_profile.hpp"
 #include "colag/uav/fleet_scheduler.hpp"
 #include "colag/uav/map_sharer.hpp"
 #include "colag/uav/mapper.hpp"
@@ -55,17 +56,16 @@ Scene& scene() {
 
 // A flight at 3 m/s (0.3 m between 10 Hz scans) across the dense map, into a fresh map: each
 // scan is new ground ahead plus much already seen, as in a mission. state.range(0) = cores.
-// `field`: the field world's LiDAR (config/worlds/field.yaml: 2 cm range noise, 5 % of the
-// returns lost, returns only), the misses inferred from the beam pattern as the UAV task does,
-// inside the timing (it is part of each scan's insertion there).
+// `field`: the field world's LiDAR (sim::field_world(), as config/worlds/field.yaml documents:
+// 2 cm range noise, 5 % of the returns lost, returns only), the misses inferred from the beam
+// pattern as the UAV task does, inside the timing (it is part of each scan's insertion there).
 void scan_insertion(benchmark::State& state, bool field) {
   auto& s = scene();
   platform::WorkerPool pool(static_cast<int>(state.range(0)) - 1);
   constexpr int kScans = 60;
-  sim::LidarErrors errors;
-  errors.range_sigma_m = 0.02;
-  errors.dropout = 0.05;
-  errors.returns_only = true;
+  const sim::LidarProfile& field_lidar = sim::field_world().lidar;
+  const sim::LidarErrors errors{field_lidar.range_sigma_m, field_lidar.dropout,
+                                field_lidar.returns_only};
   std::vector<std::vector<hal::LidarPoint>> points(kScans), misses(kScans);
   std::vector<Pose3> poses;
   for (int k = 0; k < kScans; ++k) {
