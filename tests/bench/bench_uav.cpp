@@ -63,9 +63,7 @@ void scan_insertion(benchmark::State& state, bool field) {
   auto& s = scene();
   platform::WorkerPool pool(static_cast<int>(state.range(0)) - 1);
   constexpr int kScans = 60;
-  const sim::LidarProfile& field_lidar = sim::field_world().lidar;
-  const sim::LidarErrors errors{field_lidar.range_sigma_m, field_lidar.dropout,
-                                field_lidar.returns_only};
+  const sim::LidarErrors errors = sim::field_world().lidar;
   std::vector<std::vector<hal::LidarPoint>> points(kScans), misses(kScans);
   std::vector<Pose3> poses;
   for (int k = 0; k < kScans; ++k) {

@@ -41,8 +41,7 @@ sim::SimWorldConfig sim_world_config(const MissionConfig& cfg) {
   wc.ugv.encoder_bias = cfg.faults.odom_bias;
   wc.ugv.base.protocol = cfg.ugv_base;
   wc.camera = camera_of(cfg.world.camera);
-  wc.lidar_errors = {cfg.world.lidar.range_sigma_m, cfg.world.lidar.dropout,
-                     cfg.world.lidar.returns_only};
+  wc.lidar_errors = cfg.world.lidar;
   wc.uav.odometry = uav_odometry_of(cfg.world.uav_odometry);
   wc.uav.seed = cfg.seed * 104729ULL + 3;
   return wc;

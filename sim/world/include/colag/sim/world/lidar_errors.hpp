@@ -13,9 +13,9 @@
 namespace colag::sim {
 
 struct LidarErrors {
-  double range_sigma_m = 0.0;
-  double dropout = 0.0;
-  bool returns_only = false;  // as a real driver: no list of the beams that saw nothing
+  double range_sigma_m = 0.0;  // Gaussian range noise of each return
+  double dropout = 0.0;        // share of returns lost (dark or specular surfaces)
+  bool returns_only = false;   // as a real driver: no list of the beams that saw nothing
   bool any() const { return range_sigma_m > 0.0 || dropout > 0.0 || returns_only; }
 };
 

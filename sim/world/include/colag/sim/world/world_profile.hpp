@@ -7,6 +7,7 @@
 #include <string>
 
 #include "colag/common/time.hpp"
+#include "colag/sim/world/lidar_errors.hpp"
 
 namespace colag::sim {
 
@@ -15,12 +16,6 @@ struct WheelProfile {
   double slip_per_radps = 0.0;       // turn-rate slip (skid steering), see WheelErrors
   double slip_per_mps2 = 0.0;        // acceleration slip
   double yaw_rate_bias_radps = 0.0;  // each UGV's: uniform in +-this
-};
-
-struct LidarProfile {
-  double range_sigma_m = 0.0;  // Gaussian range noise of each return
-  double dropout = 0.0;        // share of returns lost (dark or specular surfaces)
-  bool returns_only = false;   // no-return beams not reported (as a real driver)
 };
 
 struct CameraProfile {
@@ -55,7 +50,7 @@ struct ClockProfile {
 struct WorldProfile {
   std::string name = "ideal";
   WheelProfile wheels;
-  LidarProfile lidar;
+  LidarErrors lidar;  // what SimWorld adds to each scan
   CameraProfile camera;
   UavOdometryProfile uav_odometry;
   ClockProfile clocks;
