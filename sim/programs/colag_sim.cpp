@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -131,8 +132,11 @@ int run(int argc, char** argv) {
           CLI::IsMember({"none", "no-rpe", "no-uncertainty", "no-scheduling", "no-time-windows"}));
   app.add_flag("--self-perception", cfg.self_perception,
                "baseline: every UGV has its own LiDAR and true pose, no UAV");
-  app.add_option("--max-time", cfg.max_time_s, "simulated seconds before giving up")
-      ->check(sim::positive_up_to(1e6));
+  auto* max_time_opt =
+      app.add_option("--max-time", cfg.max_time_s,
+                     "simulated seconds before giving up (default 400; on a --site, 400 per 32 m "
+                     "of its length, times the UGVs per UAV beyond 4)")
+          ->check(sim::positive_up_to(1e6));
   app.add_option("--lidar-columns", cfg.lidar_columns, "LiDAR columns per turn (1200 = 0.3 deg)")
       ->check(CLI::Range(60, 1200));
   app.add_option("--predict-horizon", cfg.predict_horizon_m,
@@ -290,6 +294,8 @@ int run(int argc, char** argv) {
   }
 
   mission::lay_out_site(cfg);
+  if (scenario_file.empty() && max_time_opt->count() == 0)
+    cfg.max_time_s = mission::default_max_time_s(cfg);
   if (!save_map.empty()) {
     sim::BoxWorld world;
     std::string error;
@@ -397,6 +403,15 @@ int run(int argc, char** argv) {
       return 2;
     }
     if (!quiet) std::printf("  picture: %s\n", png_path.c_str());
+  }
+  if (o.time_limit_reached) {
+    const auto short_of = std::count_if(o.ugvs.begin(), o.ugvs.end(), [](const auto& u) {
+      return !u.reached && !u.collided;
+    });
+    std::fprintf(stderr,
+                 "colag_sim: the time limit (%.0f s) ended the mission with %d of %d UGVs still "
+                 "short of their goals: --max-time gives it longer\n",
+                 cfg.max_time_s, static_cast<int>(short_of), static_cast<int>(o.ugvs.size()));
   }
   return mission::exit_code(o);
 }

@@ -262,8 +262,9 @@ TEST(Mission, RejectsABadConfiguration) {
   EXPECT_NE(error.find("cannot open"), std::string::npos);
 }
 
-// A mission cut short says, for each UGV, how far from its goal it ended and what it was doing;
-// colag_sim's exit code is then 1.
+// A mission cut short by its time limit says so, and, for each UGV, how far from its goal it
+// ended and what it was doing; colag_sim's exit code is then 1. One that ends with every UGV
+// done does not blame the limit.
 TEST(Mission, AUgvShortOfItsGoalSaysWhereAndWhy) {
   MissionConfig cfg;
   cfg.scenario = "sparse";
@@ -272,9 +273,34 @@ TEST(Mission, AUgvShortOfItsGoalSaysWhereAndWhy) {
   const MissionOutcome o = run(cfg);
   ASSERT_EQ(o.ugvs.size(), 1u);
   EXPECT_FALSE(o.ugvs[0].reached);
+  EXPECT_TRUE(o.time_limit_reached);
   EXPECT_GT(o.ugvs[0].goal_distance_m, 20.0);
-  EXPECT_NE(o.ugvs[0].end.find("when the mission ended"), std::string::npos) << o.ugvs[0].end;
+  EXPECT_NE(o.ugvs[0].end.find("when the time limit (10 s) ended the mission"), std::string::npos)
+      << o.ugvs[0].end;
+  EXPECT_NE(to_json(o).find("\"time_limit_reached\": true"), std::string::npos);
   EXPECT_EQ(exit_code(o), 1);
+
+  cfg.max_time_s = 400;
+  const MissionOutcome done = run(cfg);
+  ASSERT_TRUE(done.all_reached);
+  EXPECT_FALSE(done.time_limit_reached);
+  EXPECT_LT(done.sim_time_s, 400.0);
+}
+
+// The default time limit: the arena's 400 s, longer on a site by its length and its UGVs per UAV.
+TEST(Mission, DefaultTimeLimitGrowsWithTheSiteAndTheFleetPerUav) {
+  MissionConfig cfg;
+  cfg.ugvs = 16;
+  EXPECT_EQ(default_max_time_s(cfg), 400.0);  // the arena, whatever the fleet
+  cfg.site = Vec2(60.0, 37.0);                // a 32 m drive
+  cfg.ugvs = 4;
+  EXPECT_DOUBLE_EQ(default_max_time_s(cfg), 400.0);
+  cfg.site = Vec2(200.0, 200.0);  // 195 m
+  EXPECT_DOUBLE_EQ(default_max_time_s(cfg), 400.0 * 195.0 / 32.0);
+  cfg.ugvs = 32;
+  EXPECT_DOUBLE_EQ(default_max_time_s(cfg), 400.0 * 195.0 / 32.0 * 8.0);
+  cfg.uavs = 4;
+  EXPECT_DOUBLE_EQ(default_max_time_s(cfg), 400.0 * 195.0 / 32.0 * 2.0);
 }
 
 // Every board keeps its own clock. Clocks an hour apart change nothing: the UGVs learn fleet time

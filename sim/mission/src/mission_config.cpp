@@ -263,6 +263,14 @@ void lay_out_site(MissionConfig& cfg) {
   cfg.uav_start = Vec3(0.0, y - 1.0, 1.0);
 }
 
+double default_max_time_s(const MissionConfig& cfg) {
+  constexpr double kArena_s = 400.0, kArenaDrive_m = 32.0;
+  if (!has_site(cfg)) return kArena_s;
+  const double drive_m = cfg.site.y() - 2.0 * kSiteStartInset_m;
+  const double per_uav = static_cast<double>(cfg.ugvs) / (4.0 * std::max(cfg.uavs, 1));
+  return kArena_s * std::max(1.0, drive_m / kArenaDrive_m) * std::max(1.0, per_uav);
+}
+
 Pose2 ugv_start(const MissionConfig& cfg, int i) {
   return cfg.placements.empty() ? ugv_start(i)
                                 : cfg.placements.at(static_cast<std::size_t>(i)).start;

@@ -1,7 +1,9 @@
 #include "colag/sim/mission/mission_outcome.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <limits>
 #include <nlohmann/json.hpp>
 
 #include "colag/sim/world/sim_world.hpp"
@@ -38,7 +40,8 @@ const char* doing(msg::UgvMode m) {
   return "in an unknown mode";
 }
 
-std::string end_of(const UgvOutcome& o) {
+// `time_limit_s`: the limit that ended the mission, or NaN if every UGV had finished before it.
+std::string end_of(const UgvOutcome& o, double time_limit_s) {
   char text[256];
   if (o.collided) {
     char with[32] = "an obstacle";
@@ -53,11 +56,14 @@ std::string end_of(const UgvOutcome& o) {
                   "stopped %.2f m from its goal, believing it had arrived (its estimate was off)",
                   o.goal_distance_m);
   } else {
-    std::snprintf(text, sizeof text, "%s when the mission ended, %.2f m from its goal",
+    char when[64] = "the mission ended";
+    if (std::isfinite(time_limit_s))
+      std::snprintf(when, sizeof when, "the time limit (%.0f s) ended the mission", time_limit_s);
+    std::snprintf(text, sizeof text, "%s when %s, %.2f m from its goal",
                   o.final_mode == msg::UgvMode::kBlocked
                       ? standing_reason(o.final_mode, o.blocked_reason).c_str()
                       : doing(o.final_mode),
-                  o.goal_distance_m);
+                  when, o.goal_distance_m);
   }
   std::string end = text;
   if (!o.reached && o.blocked_s > 0.0) {
@@ -113,7 +119,16 @@ void summarise(const sim::SimWorld& world, MissionOutcome& out) {
     for (std::size_t k = 0; k < msg::kTopicCount; ++k)
       out.bytes_in_per_ugv_by_topic_per_s[k] += o.bytes_in_by_topic_per_s[k] / n;
     out.ugv_traj_length_m += o.traj_length_m / n;
-    o.end = end_of(o);
+  }
+  // The mission runs until every UGV reached, collided or is gone for good, or until its time
+  // limit: one still on its way at the limit was stopped by the limit, not by the firmware.
+  out.time_limit_reached = out.sim_time_s >= out.config.max_time_s - 1e-6 &&
+                           std::any_of(out.ugvs.begin(), out.ugvs.end(), [](const UgvOutcome& o) {
+                             return !o.reached && !o.collided;
+                           });
+  for (UgvOutcome& o : out.ugvs) {
+    o.end = end_of(o, out.time_limit_reached ? out.config.max_time_s
+                                             : std::numeric_limits<double>::quiet_NaN());
   }
   out.reach_time_s = reached > 0 ? reach_sum / reached : -1.0;
   out.reach_missing = static_cast<int>(out.ugvs.size()) - reached;
@@ -133,6 +148,7 @@ nlohmann::ordered_json support_causes(const std::array<double, ugv::kSupportCaus
 std::string to_json(const MissionOutcome& o, bool include_wall_time) {
   nlohmann::ordered_json j;
   j["seed"] = o.config.seed;
+  j["max_time_s"] = o.config.max_time_s;
   if (o.config.uavs > 1) j["uavs"] = o.config.uavs;  // one UAV: as before (the paper's)
   if (o.config.faults.uav_lost_at_s >= 0.0) {
     j["uav_lost_at_s"] = o.config.faults.uav_lost_at_s;
@@ -232,6 +248,7 @@ std::string to_json(const MissionOutcome& o, bool include_wall_time) {
   s["bytes_in_per_ugv_by_topic"] = by_topic(o.bytes_in_per_ugv_by_topic_per_s);
   s["collisions"] = o.collisions;
   s["all_reached"] = o.all_reached;
+  s["time_limit_reached"] = o.time_limit_reached;
   j["summary"] = s;
   if (o.base_fault.injected) {
     nlohmann::ordered_json f;

@@ -131,6 +131,12 @@ bool site_size_ok(const Vec2& site);
 // With a site and no placements: the site's layout (above) as placements, and the UAV's start
 // behind the middle of the line.
 void lay_out_site(MissionConfig& cfg);
+// The time limit a mission gets unless told: 400 s (the paper's arena: a 32 m drive, up to 16
+// UGVs); on a generated site, 400 s per 32 m of the drive from edge to edge, times the UGVs per
+// UAV beyond 4 (one UAV serves a fleet in turn: on a 200 x 200 m site each UGV waited ~1900 s
+// for four UAVs with 32 UGVs). The mission ends as soon as every UGV is done: the limit only
+// bounds the ones that never are.
+double default_max_time_s(const MissionConfig& cfg);
 // The half extents of the generated field (the paper's 13.5 m without a site).
 Vec2 field_half(const MissionConfig& cfg);
 // This mission's: its placements, or the paper's layout.

@@ -109,6 +109,9 @@ struct MissionOutcome {
   double uav_min_separation_m = -1.0;
   int collisions = 0;
   bool all_reached = false;
+  // The mission ended at config.max_time_s with a UGV still short of its goal (neither reached
+  // nor collided): more time, not the firmware, might have brought it there.
+  bool time_limit_reached = false;
   double sim_time_s = 0.0;
   double wall_time_s = 0.0;
   std::uint64_t map_patches = 0;
