@@ -405,9 +405,8 @@ int run(int argc, char** argv) {
     if (!quiet) std::printf("  picture: %s\n", png_path.c_str());
   }
   if (o.time_limit_reached) {
-    const auto short_of = std::count_if(o.ugvs.begin(), o.ugvs.end(), [](const auto& u) {
-      return !u.reached && !u.collided;
-    });
+    const auto short_of = std::count_if(o.ugvs.begin(), o.ugvs.end(),
+                                        [](const auto& u) { return !u.reached && !u.collided; });
     std::fprintf(stderr,
                  "colag_sim: the time limit (%.0f s) ended the mission with %d of %d UGVs still "
                  "short of their goals: --max-time gives it longer\n",
