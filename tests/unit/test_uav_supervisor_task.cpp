@@ -490,6 +490,49 @@ TEST(UavSupervisorTask, CirclesAUgvAgainstItsOwnEdgeFromOutsideItsBlindDisc) {
   EXPECT_LT(rig.distance_to(other + Vec2(0, 2)), 1.0);
 }
 
+// A narrow camera (40 deg from 1.6 m up: tags within 1.1 m) never sees the tag of a UGV near the
+// point the usual 2 m orbit circles. The UAV flies to the UGV first, then circles through it
+// round its support point: the tag comes back into view every turn, the point is seen from
+// several sides. With the field world's wide lens the orbit is the usual one (tested above).
+TEST(UavSupervisorTask, ANarrowCameraCirclesThroughTheUgvItSupports) {
+  UavSupervisorConfig c;
+  c.camera_view = {5.0, 40.0, 0.3};
+  c.lidar_pattern = {32, -25.2, 1.2, 1200};
+  Rig rig(nullptr, c);
+  const double reach = camera_reach(c.camera_view, rig.uav->config().flight.altitude_m);  // ~1.1 m
+  ASSERT_LT(reach, c.orbit_radius_m);
+  const Vec2 ugv(6.0, 2.0), support = ugv + Vec2(0.0, -1.5);  // facing south
+  rig.sky->ugvs = {ugv};
+  const auto ask = [&] {
+    rig.status(0, ugv, msg::UgvMode::kWaitingForSupport);
+    rig.request(0, support, 0.2, false, ugv + Vec2(0.0, -2.5));
+  };
+  for (int i = 0; i < 12 && rig.distance_to(ugv) > 0.8; ++i) {
+    ask();
+    rig.ex.run_until(rig.ex.now() + 1s);
+  }
+  ASSERT_LT(rig.distance_to(ugv), 0.8);                    // over the UGV first
+  const Vec2 centre = ugv + Vec2(0.0, -c.orbit_radius_m);  // through it, round its support point
+  double farthest = 0.0, turned = 0.0;
+  bool left = false, back = false, hovering = true;
+  double last = std::atan2(rig.sky->p.y() - centre.y(), rig.sky->p.x() - centre.x());
+  for (int i = 0; i < 120; ++i) {  // 12 s: its hover timeout (10 s) lets others have a turn
+    if (i % 10 == 0) ask();
+    rig.ex.run_until(rig.ex.now() + 100ms);
+    if (i < 80) hovering = hovering && rig.uav->mode() == UavMode::kHover;
+    farthest = std::max(farthest, rig.distance_to(ugv));
+    left = left || rig.distance_to(ugv) > 2.0 * reach;
+    back = back || (left && rig.distance_to(ugv) < reach);
+    const double bearing = std::atan2(rig.sky->p.y() - centre.y(), rig.sky->p.x() - centre.x());
+    turned += std::remainder(bearing - last, 2.0 * M_PI);
+    last = bearing;
+  }
+  EXPECT_TRUE(hovering);
+  EXPECT_GT(farthest, 3.0);                 // round the far side of the support point
+  EXPECT_TRUE(back);                        // and back over the tag
+  EXPECT_GT(std::abs(turned), 1.5 * M_PI);  // a full turn round the point, near enough
+}
+
 // A UGV whose firmware restarted without a kept pose asks for its first relative pose where its
 // mission starts; it has not driven since we last knew where it was: the UAV looks there first,
 // and where it asks only once it hovered there in vain (it may have been carried away).

@@ -89,7 +89,8 @@ UavSupervisorTask::UavSupervisorTask(const UavSupervisorConfig& config,
       flight_(config_.flight),
       scheduler_(config.scheduler, &exact_labels_),
       fleet_(config.fleet, &exact_labels_),
-      edge_orbit_radius_(edge_orbit_radius_of(config_)) {
+      edge_orbit_radius_(edge_orbit_radius_of(config_)),
+      camera_reach_(camera_reach(config_.camera_view, config_.flight.altitude_m)) {
   const Duration skew = config.max_future_skew;
   odometry_stamps_ = StampGate({skew, config.max_input_age, true});
   camera_stamps_ = StampGate({skew, config.max_input_age, false});
@@ -366,7 +367,19 @@ void UavSupervisorTask::place_stops() {
     }
     r.support = r.centre = r.at_last_fix ? p : r.asked;
     r.radius = config_.orbit_radius_m;
-    if (!r.active || !u.known || std::isnan(edge_orbit_radius_)) continue;
+    if (!r.active || !u.known) continue;
+    // A camera that sees less far than the orbit's radius (a narrow lens: 40 deg reaches 1.1 m
+    // from 1.6 m up) would never see the tag of a UGV near the point it circles. Fly to the UGV
+    // first, then circle through it: the ground round the point is still seen from every side,
+    // and the tag once a turn.
+    if (camera_reach_ < r.radius && localised(u.status)) {
+      const Vec2 away = r.centre - p;
+      const Vec2 dir =
+          away.norm() > 1e-3 ? Vec2(away.normalized()) : Vec2(std::cos(yaw), std::sin(yaw));
+      r.support = p;
+      r.centre = p + r.radius * dir;
+    }
+    if (std::isnan(edge_orbit_radius_)) continue;
     if (!((collision - p).norm() <= config_.edge_stop_m)) continue;  // NaN: not at its edge
     r.centre = p;
     r.radius = edge_orbit_radius_;

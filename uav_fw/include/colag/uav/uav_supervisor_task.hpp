@@ -344,6 +344,7 @@ class UavSupervisorTask {
   Vec2 stop_point_ = Vec2::Zero();
   double orbit_phase_ = 0.0;
   double edge_orbit_radius_ = 0.0;  // see UavSupervisorConfig::edge_stop_m
+  double camera_reach_ = 0.0;       // from the point under it, at the flight altitude
   TimePoint hover_since_ = kNever;
   UavMode mode_ = UavMode::kIdle;
   msg::SupportPlan plan_;
