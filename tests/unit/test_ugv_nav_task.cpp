@@ -375,6 +375,58 @@ TEST(UgvNavTask, AtItsGoalByAnUncertainEstimateItAsksForAFixBeforeArriving) {
   EXPECT_LT((rig.world->truth.p - Vec2(7.0, 0.0)).norm(), 0.35);
 }
 
+// Held by another UGV parked in its way, its own estimate (no fix for a while) too uncertain to
+// pass at the distance its plan keeps: after robot_fix_after_s it asks the UAV for a fix where
+// it stands (the other never moves away), and drives on once fixed.
+TEST(UgvNavTask, HeldByAParkedUgvItAsksForAFixWhereItStands) {
+  Rig rig(Vec2(8.0, 0.0));
+  rig.publish_map(-3.2, -6.4, 9.6, 6.4);
+  float parked_variance = 0.09F;  // its 3 sigma 0.9 m (the UAV has not seen it for a while)
+  const auto parked = [&] {
+    msg::NearbyUgvs m;
+    m.stamp = rig.ex.now();
+    m.ugv_id = 0;
+    m.radius_m = 12.0;
+    m.ugvs.count = 1;
+    msg::NearbyUgv& s = m.ugvs[0];
+    s.stamp = rig.ex.now();
+    s.ugv_id = 1;
+    s.mode = msg::UgvMode::kArrived;
+    s.position_m[0] = 4.0;  // on the straight way to the goal
+    s.position_m[1] = 0.0;
+    s.covariance_xy[0] = s.covariance_xy[2] = parked_variance;
+    ASSERT_TRUE(rig.bus->publish(m));
+  };
+  const auto run_for = [&](Duration d, const std::function<bool()>& done) {
+    const TimePoint end = rig.ex.now() + d;
+    for (int i = 0; rig.ex.now() < end; ++i) {
+      if (i % 5 == 0) parked();
+      rig.ex.run_until(rig.ex.now() + 100ms);
+      if (done()) return true;
+    }
+    return false;
+  };
+  parked();
+  rig.ex.run_until(TimePoint{1s});
+  rig.world->rpe_on = false;
+  ASSERT_TRUE(run_for(30s, [&] { return rig.ugv->mode() == msg::UgvMode::kWaitingForRobot; }));
+  const TimePoint held = rig.ex.now();
+  const auto asked_here = [&] {
+    const Vec2 here = rig.ugv->estimator().pose().p;
+    return rig.support.requests > 0 && !rig.support.last.cancel &&
+           std::abs(rig.support.last.support_point_m[0] - here.x()) < 0.05 &&
+           std::abs(rig.support.last.support_point_m[1] - here.y()) < 0.05;
+  };
+  ASSERT_TRUE(run_for(15s, asked_here));
+  EXPECT_GE(rig.ex.now() - held, 9s);  // robot_fix_after_s: 10 s (the first stop came earlier)
+  EXPECT_EQ(rig.ugv->mode(), msg::UgvMode::kWaitingForRobot);
+  const Vec2 here = rig.ugv->estimator().pose().p;
+  rig.world->move_uav(Vec3(here.x(), here.y(), 2.0));  // the UAV comes: it sees both of them
+  rig.world->rpe_on = true;
+  parked_variance = 0.0025F;
+  EXPECT_TRUE(run_for(40s, [&] { return rig.ugv->mode() == msg::UgvMode::kArrived; }));
+}
+
 TEST(UgvNavTask, WheelOdometryLossStopsTheRobotAndReportsAFault) {
   Rig rig(Vec2(6.0, 0.0));
   rig.publish_map(-3.2, -3.2, 9.6, 3.2);

@@ -18,7 +18,8 @@ double sigma_major(const Mat2& cov) {
 
 // Faster than any UGV drives: a status claiming more is corrupt.
 constexpr double kMaxPlausibleSpeed_mps = 5.0;
-constexpr double kWindowGoalMargin_m = 1.0;  // see replan()
+constexpr double kWindowGoalMargin_m = 1.0;                     // see replan()
+constexpr Duration kRobotReleaseGap = std::chrono::seconds(2);  // see predict_and_request()
 
 bool plausible(const msg::NearbyUgv& u) {
   if (!std::isfinite(u.position_m[0]) || !std::isfinite(u.position_m[1])) return false;
@@ -525,7 +526,7 @@ void UgvNavTask::predict_and_request(TimePoint now) {
       stopped_for_robot_ = false;
       break;
     case CollisionKind::kRobot:
-      // The UAV cannot help here: replan around the other UGV and wait if it is close.
+      // The UAV cannot move the other UGV: replan around it and wait if it is close.
       stopped_for_support_ = false;
       stopped_for_robot_ = t_soonest < config_.robot_stop_time_s;
       replan_requested_ = true;
@@ -535,6 +536,22 @@ void UgvNavTask::predict_and_request(TimePoint now) {
       break;
   }
   if (was_stopped && !stopped_for_support_ && !stopped_for_robot_) replan_requested_ = true;
+  // Held by another UGV for long (short releases, a replanned step or two, do not count as
+  // leaving): a fix where it stands shrinks its own part of the distance kept.
+  if (stopped_for_robot_) {
+    if (!robot_held_ || now - robot_held_last_ > kRobotReleaseGap) robot_stop_since_ = now;
+    robot_held_ = true;
+    robot_held_last_ = now;
+  }
+  const bool held_lately = robot_held_ && now - robot_held_last_ <= kRobotReleaseGap;
+  if (held_lately && !need.needed && config_.robot_fix_after_s > 0.0 &&
+      now - robot_stop_since_ >= seconds(config_.robot_fix_after_s)) {
+    support_cause_ = SupportCause::kUncertainNow;
+    need.needed = true;
+    need.collision_point = prediction_.point;
+    need.support_point = ekf_.pose().p;
+    need.time_to_collision_s = 0.0;
+  }
   if (awaiting_fix_) {  // the UAV to come to the goal and see it there
     support_cause_ = SupportCause::kGoalFix;
     need.needed = true;

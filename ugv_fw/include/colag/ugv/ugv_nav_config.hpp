@@ -56,6 +56,11 @@ struct UgvNavConfig {
   double stop_time_s = 0.4;        // t_c: stop when a collision is predicted sooner
   double resume_margin_s = 0.2;    // hysteresis before driving on
   double robot_stop_time_s = 1.5;  // stop for another UGV predicted closer than this
+  // Held this long by another UGV, it asks the UAV for a fix where it stands: its own
+  // uncertainty is part of what keeps them apart, and a UGV parked at its goal never moves
+  // away (with a narrow camera nothing else brought the UAV, and a UGV stood for good 2.6 m
+  // from its goal beside another's). 0: never.
+  double robot_fix_after_s = 10.0;
   // Its status says where, within this far along its planned path, the path first comes near an
   // unknown cell (UgvStatus::scout_point_m): where the UAV scouts when nothing is requested.
   // 0: never said.

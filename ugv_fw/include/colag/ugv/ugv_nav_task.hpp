@@ -260,6 +260,9 @@ class UgvNavTask {
   bool stopped_for_support_ = false;
   bool awaiting_fix_ = false;  // at the goal by its estimate, not sure enough to have arrived
   bool stopped_for_robot_ = false;
+  // Held by another UGV: since when (through short releases), and when last.
+  bool robot_held_ = false;
+  TimePoint robot_stop_since_{}, robot_held_last_{};
   bool arrived_ = false;
   bool paused_ = false;        // by its operator, until resume
   bool aborted_ = false;       // by its operator, until a new goal
