@@ -170,6 +170,22 @@ struct Rig {
       }
     }
   }
+  // The UAV's list of the UGVs near this one: UGV 1 alone, heard just now.
+  void relay_other(msg::UgvMode mode, const Vec2& p, float variance) {
+    msg::NearbyUgvs m;
+    m.stamp = ex.now();
+    m.ugv_id = 0;
+    m.radius_m = 12.0;
+    m.ugvs.count = 1;
+    msg::NearbyUgv& s = m.ugvs[0];
+    s.stamp = ex.now();
+    s.ugv_id = 1;
+    s.mode = mode;
+    s.position_m[0] = static_cast<float>(p.x());
+    s.position_m[1] = static_cast<float>(p.y());
+    s.covariance_xy[0] = s.covariance_xy[2] = variance;
+    ASSERT_TRUE(bus->publish(m));
+  }
   bool run_until(const std::function<bool()>& done, Duration limit) {
     const TimePoint end = ex.now() + limit;
     while (ex.now() < end) {
@@ -382,20 +398,8 @@ TEST(UgvNavTask, HeldByAParkedUgvItAsksForAFixWhereItStands) {
   Rig rig(Vec2(8.0, 0.0));
   rig.publish_map(-3.2, -6.4, 9.6, 6.4);
   float parked_variance = 0.09F;  // its 3 sigma 0.9 m (the UAV has not seen it for a while)
-  const auto parked = [&] {
-    msg::NearbyUgvs m;
-    m.stamp = rig.ex.now();
-    m.ugv_id = 0;
-    m.radius_m = 12.0;
-    m.ugvs.count = 1;
-    msg::NearbyUgv& s = m.ugvs[0];
-    s.stamp = rig.ex.now();
-    s.ugv_id = 1;
-    s.mode = msg::UgvMode::kArrived;
-    s.position_m[0] = 4.0;  // on the straight way to the goal
-    s.position_m[1] = 0.0;
-    s.covariance_xy[0] = s.covariance_xy[2] = parked_variance;
-    ASSERT_TRUE(rig.bus->publish(m));
+  const auto parked = [&] {       // on the straight way to the goal
+    rig.relay_other(msg::UgvMode::kArrived, Vec2(4.0, 0.0), parked_variance);
   };
   const auto run_for = [&](Duration d, const std::function<bool()>& done) {
     const TimePoint end = rig.ex.now() + d;
@@ -617,20 +621,8 @@ TEST(UgvNavTask, ASilentUgvStaysAnObstacleThatGrowsUntilItIsHeardAgain) {
   Rig rig(Vec2(8.0, 0.0));
   rig.publish_map(-3.2, -3.2, 9.6, 6.4);
   // The UAV relays UGV 1's status (heard just now), then goes silent.
-  const auto other_status = [&] {
-    msg::NearbyUgvs m;
-    m.stamp = rig.ex.now();
-    m.ugv_id = 0;
-    m.radius_m = 12.0;
-    m.ugvs.count = 1;
-    msg::NearbyUgv& s = m.ugvs[0];
-    s.stamp = rig.ex.now();
-    s.ugv_id = 1;
-    s.mode = msg::UgvMode::kDriving;
-    s.position_m[0] = 5.0;  // 2 m beside the way to the goal
-    s.position_m[1] = 2.0;
-    s.covariance_xy[0] = s.covariance_xy[2] = 1e-4F;
-    ASSERT_TRUE(rig.bus->publish(m));
+  const auto other_status = [&] {  // 2 m beside the way to the goal
+    rig.relay_other(msg::UgvMode::kDriving, Vec2(5.0, 2.0), 1e-4F);
   };
   other_status();  // heard once, then silent
   ASSERT_TRUE(rig.run_until(
