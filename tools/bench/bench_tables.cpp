@@ -3,6 +3,7 @@
 #include "mission_pool.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -50,6 +51,12 @@ const std::map<std::string, std::string> kTable2 = {
     {"no-time-windows", "reach 132.43  wait 18.29  max 46.65  UGV 34.81  UAV 238.56"},
 };
 
+// Table IV's fleets, and the targets it sizes the UAVs for (issue 20's dense 7 field targets).
+constexpr std::array<int, 4> kCapacityUgvs = {3, 7, 12, 16};
+constexpr int kCapacityUavs = 4;
+constexpr double kCapacityMaxRatio = 1.15;
+constexpr double kCapacityMaxWait_s = 6.0;
+
 struct Aggregate {
   Mean reach, waiting, max_waiting, ugv_len, uav_len, rt;
   int collisions = 0, runs = 0, all_reached = 0, failed = 0;
@@ -77,12 +84,64 @@ Aggregate aggregate(const std::vector<Run>& runs, const std::string& key) {
   return a;
 }
 
+// A table's number: two decimals, or "-" where nothing was measured.
+std::string num(double v) {
+  char b[16];
+  std::snprintf(b, sizeof b, std::isfinite(v) ? "%.2f" : "-", v);
+  return b;
+}
+
+// Table IV: the dense map with N UGVs and K UAVs, against the self-perception baseline; for each
+// N, the fewest UAVs that keep reach and waiting within the issue's targets.
+void print_capacity(const std::vector<Run>& runs) {
+  std::printf(
+      "\nTable IV (beyond the paper): how many UGVs K UAVs serve. Dense map, N UGVs, K UAVs "
+      "(averages over\nthe seeds, +- the 95 %% interval of the mean; ratio = reach / the "
+      "self-perception baseline's)\n");
+  std::printf("%-5s %-5s %9s %15s %7s %13s %7s %5s %8s\n", "UGVs", "UAVs", "UGVs/UAV", "reach",
+              "ratio", "wait", "max", "coll", "reached");
+  for (const int n : kCapacityUgvs) {
+    const Aggregate sp = aggregate(runs, spec("dense", n, "none", true).key());
+    int fewest = 0;
+    bool measured = false;
+    for (int k = 1; k <= kCapacityUavs; ++k) {
+      Config c = spec("dense", n, "none", false);
+      c.uavs = k;
+      const Aggregate a = aggregate(runs, c.key());
+      if (a.runs == 0) continue;
+      measured = true;
+      const double ratio = a.reach.get() / sp.reach.get();
+      // Every mission flown, every UGV there, none collided, both targets met on average.
+      const bool within = a.failed == 0 && a.all_reached == a.runs && a.collisions == 0 &&
+                          ratio <= kCapacityMaxRatio && a.waiting.get() <= kCapacityMaxWait_s;
+      if (within && fewest == 0) fewest = k;
+      std::printf("%-5d %-5d %9.1f %7s +-%5s %7s %6s +-%4s %7s %5d %4d/%-3d\n", n, k,
+                  static_cast<double>(n) / k, num(a.reach.get()).c_str(),
+                  num(a.reach.half95()).c_str(), num(ratio).c_str(), num(a.waiting.get()).c_str(),
+                  num(a.waiting.half95()).c_str(), num(a.max_waiting.get()).c_str(), a.collisions,
+                  a.all_reached, a.runs);
+    }
+    if (!measured) continue;
+    if (fewest > 0) {
+      std::printf("  %d UGVs: %d UAV%s keep%s reach within %.2fx and waiting within %.0f s\n", n,
+                  fewest, fewest == 1 ? "" : "s", fewest == 1 ? "s" : "", kCapacityMaxRatio,
+                  kCapacityMaxWait_s);
+    } else {
+      std::printf(
+          "  %d UGVs: no count of 1-%d UAVs keeps reach within %.2fx and waiting within "
+          "%.0f s\n",
+          n, kCapacityUavs, kCapacityMaxRatio, kCapacityMaxWait_s);
+    }
+  }
+}
+
 }  // namespace
 
 int run_tables(const TablesOptions& o) {
   std::vector<Config> configs;
   const bool t1 = o.tables == "1" || o.tables == "all", t2 = o.tables == "2" || o.tables == "all";
   const bool t3 = o.tables == "3" || o.tables == "all";
+  const bool t4 = o.tables == "4" || o.tables == "all";
   if (o.quick) {
     configs = {spec("sparse", 1, "none", false), spec("sparse", 1, "none", true)};
   } else {
@@ -108,6 +167,21 @@ int run_tables(const TablesOptions& o) {
           c.uavs = k;
           c.scouting = scouting;
           if (!(t1 && k == 1 && !scouting)) configs.push_back(c);  // else in Table I
+        }
+      }
+    }
+    if (t4) {  // capacity: how many UGVs K UAVs serve (each configuration once, whatever table)
+      const auto add = [&](const Config& c) {
+        const bool known = std::any_of(configs.begin(), configs.end(),
+                                       [&](const Config& d) { return d.key() == c.key(); });
+        if (!known) configs.push_back(c);
+      };
+      for (const int n : kCapacityUgvs) {
+        add(spec("dense", n, "none", true));
+        for (int k = 1; k <= kCapacityUavs; ++k) {
+          Config c = spec("dense", n, "none", false);
+          c.uavs = k;
+          add(c);
         }
       }
     }
@@ -151,11 +225,6 @@ int run_tables(const TablesOptions& o) {
     csv << '\n';
   }
 
-  const auto num = [](double v) {
-    char b[16];
-    std::snprintf(b, sizeof b, std::isfinite(v) ? "%.2f" : "-", v);
-    return std::string(b);
-  };
   if (t1 || o.quick) {
     std::printf(
         "\nTable I: averages per UGV over the seeds; paper in brackets. Reach = time to the goal "
@@ -224,6 +293,7 @@ int run_tables(const TablesOptions& o) {
       }
     }
   }
+  if (t4 && !o.quick) print_capacity(runs);
   Mean rt;
   for (const Run& r : runs) {
     if (r.ok && !r.spec.self_perception) rt.add(r.result["realtime_factor"].get<double>());
