@@ -25,6 +25,12 @@ Config spec(const std::string& scenario, int ugvs, const std::string& ablation, 
   return c;
 }
 using Run = MissionRun;
+// The dense map with n UGVs and k UAVs (Tables III and IV).
+Config fleet(int ugvs, int uavs) {
+  Config c = spec("dense", ugvs, "none", false);
+  c.uavs = uavs;
+  return c;
+}
 
 // The paper's numbers (reference/paper-results.md).
 struct PaperRow {
@@ -105,9 +111,7 @@ void print_capacity(const std::vector<Run>& runs) {
     int fewest = 0;
     bool measured = false;
     for (int k = 1; k <= kCapacityUavs; ++k) {
-      Config c = spec("dense", n, "none", false);
-      c.uavs = k;
-      const Aggregate a = aggregate(runs, c.key());
+      const Aggregate a = aggregate(runs, fleet(n, k).key());
       if (a.runs == 0) continue;
       measured = true;
       const double ratio = a.reach.get() / sp.reach.get();
@@ -163,8 +167,7 @@ int run_tables(const TablesOptions& o) {
     if (t3) {  // beyond the paper: several UAVs, scouting (dense 7: one UAV's hardest row)
       for (int k = 1; k <= 4; ++k) {
         for (const bool scouting : {false, true}) {
-          Config c = spec("dense", 7, "none", false);
-          c.uavs = k;
+          Config c = fleet(7, k);
           c.scouting = scouting;
           if (!(t1 && k == 1 && !scouting)) configs.push_back(c);  // else in Table I
         }
@@ -178,11 +181,8 @@ int run_tables(const TablesOptions& o) {
       };
       for (const int n : kCapacityUgvs) {
         add(spec("dense", n, "none", true));
-        for (int k = 1; k <= kCapacityUavs; ++k) {
-          Config c = spec("dense", n, "none", false);
-          c.uavs = k;
-          add(c);
-        }
+        for (int k = 1; k <= kCapacityUavs; ++k)
+          add(fleet(n, k));
       }
     }
   }
@@ -279,8 +279,7 @@ int run_tables(const TablesOptions& o) {
                 "max", "UGV m", "UAV m", "coll", "reached");
     for (int k = 1; k <= 4; ++k) {
       for (const bool scouting : {false, true}) {
-        Config c = spec("dense", 7, "none", false);
-        c.uavs = k;
+        Config c = fleet(7, k);
         c.scouting = scouting;
         const Aggregate a = aggregate(runs, c.key());
         if (a.runs == 0) continue;
